@@ -1,0 +1,38 @@
+// Generators of large, realistic OpenPLX documents for benchmarks: the shapes real files have (bodies with
+// geometry and connectors, systems of mates, comments, vectors and calls), repeated with unique names.
+#pragma once
+
+#include <string>
+
+namespace openplx::bench {
+
+// A document of at least `bytes` bytes, deterministic for a given size.
+inline std::string generate_document(size_t bytes) {
+  std::string out;
+  out.reserve(bytes + 4096);
+  out += "# generated benchmark document\n";
+  for (size_t i = 0; out.size() < bytes; ++i) {
+    const std::string n = std::to_string(i);
+    out += "Rod" + n + " is Physics3D.Bodies.RigidBody:\n";
+    out += "    inertia.mass: " + std::to_string(1 + i % 17) + ".5  # kilograms\n";
+    out += "    geometry is Physics3D.Geometries.Box:\n";
+    out += "        size: Math.Vec3.from_xyz(0.1, 0.1, " + std::to_string(1 + i % 5) + ")\n";
+    out += "    connector is Physics3D.Interactions.MateConnector:\n";
+    out += "        position.z: -geometry.size.z * 0.5 + 2.5e-3\n";
+    out += "        main_axis: Math.Vec3.Y_AXIS()\n";
+    out += "        normal: {0, 0, 1}\n";
+    out += "\n";
+    out += "Scene" + n + " is Physics3D.System:\n";
+    out += "    .doc: \"\"\"A rod on a hinge,\n    generated.\"\"\"\n";
+    out += "    rod is Rod" + n + "\n";
+    out += "    world_connector is Physics3D.Interactions.MateConnector:\n";
+    out += "        position: {0, " + std::to_string(i % 7) + ", 0.5}\n";
+    out += "    hinge is Physics3D.Interactions.Hinge:\n";
+    out += "        connectors: [rod.connector, world_connector]\n";
+    out += "        initial_angle: Math.PI / 4\n";
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace openplx::bench

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Fails when a C++ file in the tree is not formatted by the root .clang-format.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+command -v clang-format >/dev/null || { echo "clang-format not found; skipping format check"; exit 0; }
+mapfile -t files < <(git ls-files '*.cpp' '*.h' 2>/dev/null || find . -name '*.cpp' -o -name '*.h')
+[[ ${#files[@]} -eq 0 ]] && exit 0
+if ! clang-format --dry-run --Werror "${files[@]}" 2>/tmp/openplx-format.log; then
+  echo "error: files are not clang-formatted (run: clang-format -i \$(git ls-files '*.cpp' '*.h')):" >&2
+  grep -o '^[^:]*:' /tmp/openplx-format.log | sort -u >&2
+  exit 1
+fi
+echo "== format check: OK"

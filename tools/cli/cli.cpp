@@ -1,0 +1,225 @@
+#include "tools/cli/cli.h"
+
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string_view>
+
+#include "frontend/ast_dump.h"
+#include "frontend/diagnostics.h"
+#include "frontend/lexer.h"
+#include "frontend/parser.h"
+#include "tools/cli/atomic_file.h"
+
+#ifndef OPENPLX_VERSION
+#define OPENPLX_VERSION "0.0.0"
+#endif
+
+namespace openplx::cli {
+namespace {
+
+namespace fe = openplx::frontend;
+
+// Matches `--name VALUE`, `--name=VALUE` and, for one-letter options, `-xVALUE`.
+bool take_value(const std::vector<std::string>& args, size_t& i, std::string_view long_name,
+                std::string_view short_name, std::string& value, std::string& error, bool& matched) {
+  const std::string& arg = args[i];
+  matched = false;
+  for (std::string_view name : {long_name, short_name}) {
+    if (name.empty()) continue;
+    if (arg == name) {
+      matched = true;
+      if (i + 1 >= args.size()) {
+        error = "option " + std::string(name) + " needs a value";
+        return false;
+      }
+      value = args[++i];
+      return true;
+    }
+    const bool is_long = name.size() > 2;
+    std::string prefix = std::string(name) + (is_long ? "=" : "");
+    if (arg.size() > prefix.size() && arg.compare(0, prefix.size(), prefix) == 0) {
+      matched = true;
+      value = arg.substr(prefix.size());
+      return true;
+    }
+  }
+  return true;
+}
+
+void report_unknown_model(const fe::Document& doc, const std::string& name, fe::DiagnosticSink& sink,
+                          const fe::SourceFile& file) {
+  std::string models;
+  for (const fe::Decl& decl : doc.decls) {
+    if (decl.kind != fe::DeclKind::Model) continue;
+    models += (models.empty() ? "" : ", ") + std::string(decl.name.text);
+  }
+  sink.report(fe::DiagCode::UnknownModel, {doc.file, file.content_begin(), file.content_begin()},
+              "no model named `" + name + "` in this file" +
+                  (models.empty() ? std::string() : "; its models are " + models));
+}
+
+}  // namespace
+
+std::string usage() {
+  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast]\n"
+         "                    [--help] [--version]\n"
+         "\n"
+         "Reads an OpenPLX model and checks it. With --dump, prints the tokens or the syntax tree.\n"
+         "\n"
+         "  --model NAME   the root model (default: the last model in FILE)\n"
+         "  -o OUT         write the output to OUT ('-' for stdout, the default)\n"
+         "  -B DIR         an extra bundle directory (repeatable)\n"
+         "  --strict       treat warnings as errors\n"
+         "  --dump=KIND    tokens | ast\n"
+         "  --help         show this text\n"
+         "  --version      show the version\n"
+         "\n"
+         "Exit status: 0 success, 1 errors in the input, 2 usage errors.\n";
+}
+
+std::optional<CliOptions> parse_options(const std::vector<std::string>& args, std::string& error) {
+  CliOptions options;
+  bool inputs_done = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    std::string value;
+    bool matched = false;
+    if (!inputs_done && arg == "--") {
+      inputs_done = true;
+      continue;
+    }
+    if (inputs_done || arg.empty() || arg[0] != '-' || arg == "-") {
+      if (!options.input.empty()) {
+        error = "only one input file is allowed (got '" + options.input + "' and '" + arg + "')";
+        return std::nullopt;
+      }
+      options.input = arg;
+      continue;
+    }
+    if (arg == "--help" || arg == "-h") {
+      options.help = true;
+      continue;
+    }
+    if (arg == "--version") {
+      options.version = true;
+      continue;
+    }
+    if (arg == "--strict") {
+      options.strict = true;
+      continue;
+    }
+    if (!take_value(args, i, "--model", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      options.model = value;
+      continue;
+    }
+    if (!take_value(args, i, "--output", "-o", value, error, matched)) return std::nullopt;
+    if (matched) {
+      options.output = value;
+      continue;
+    }
+    if (!take_value(args, i, "--bundle-path", "-B", value, error, matched)) return std::nullopt;
+    if (matched) {
+      options.bundle_dirs.push_back(value);
+      continue;
+    }
+    if (!take_value(args, i, "--dump", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      if (value == "tokens") {
+        options.dump = DumpKind::Tokens;
+      } else if (value == "ast") {
+        options.dump = DumpKind::Ast;
+      } else {
+        error = "unknown dump kind '" + value + "' (expected tokens or ast)";
+        return std::nullopt;
+      }
+      continue;
+    }
+    error = "unknown option '" + arg + "'";
+    return std::nullopt;
+  }
+  if (options.help || options.version) return options;
+  if (options.input.empty()) {
+    error = "no input file";
+    return std::nullopt;
+  }
+  for (const std::string& dir : options.bundle_dirs) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) {
+      error = "bundle directory '" + dir + "' does not exist";
+      return std::nullopt;
+    }
+  }
+  if (options.output && *options.output != "-") {
+    std::error_code ec;
+    if (std::filesystem::equivalent(options.input, *options.output, ec)) {
+      error = "refusing to overwrite the input file '" + options.input + "'";
+      return std::nullopt;
+    }
+  }
+  return options;
+}
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  std::string usage_error;
+  std::optional<CliOptions> options = parse_options(args, usage_error);
+  if (!options) {
+    err << "openplx2mjcf: error: " << usage_error << "\nTry 'openplx2mjcf --help'.\n";
+    return kExitUsageError;
+  }
+  if (options->help) {
+    out << usage();
+    return kExitOk;
+  }
+  if (options->version) {
+    out << "openplx2mjcf " << OPENPLX_VERSION << '\n';
+    return kExitOk;
+  }
+  if (options->output && options->dump == DumpKind::None) {
+    err << "openplx2mjcf: error: MJCF output is not implemented yet; use --dump=tokens|ast with -o\n";
+    return kExitUsageError;
+  }
+
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink(options->strict);
+  std::string io_error;
+  std::optional<fe::FileId> file_id = sources.load(options->input, io_error);
+  if (!file_id) {
+    err << options->input << ": error: " << io_error << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
+    return kExitInputError;
+  }
+  const fe::SourceFile& file = sources.file(*file_id);
+
+  std::ostringstream text;
+  if (options->dump == DumpKind::Tokens) {
+    fe::dump_tokens(text, file, fe::lex(file, *file_id, sink));
+  } else {
+    fe::Document doc = fe::parse_file(sources, *file_id, sink);
+    if (options->dump == DumpKind::Ast) {
+      fe::dump_ast(text, file, doc);
+    } else if (options->model) {
+      if (!doc.find_model(*options->model)) report_unknown_model(doc, *options->model, sink, file);
+    } else if (!doc.last_model()) {
+      sink.report(fe::DiagCode::NoModel, {*file_id, file.content_begin(), file.content_begin()},
+                  "No model could be found");
+    }
+  }
+
+  fe::print_diagnostics(err, sources, sink.diagnostics());
+  const bool failed = sink.has_errors();
+  const bool to_stdout = !options->output || *options->output == "-";
+  if (to_stdout) {
+    out << text.str();  // a dump of a broken file still helps; its diagnostics are on stderr
+  } else if (!failed) {
+    std::string write_error;
+    if (!write_file_atomically(*options->output, text.str(), write_error)) {
+      err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
+          << "]\n";
+      return kExitInputError;
+    }
+  }
+  return failed ? kExitInputError : kExitOk;
+}
+
+}  // namespace openplx::cli

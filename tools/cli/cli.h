@@ -1,0 +1,39 @@
+// The `openplx2mjcf` command line, callable in-process so tests run it under the sanitizers.
+//
+//   openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast] [--help] [--version]
+//
+// Exit status: 0 success (warnings allowed), 1 input errors (diagnostics on `err`), 2 usage errors.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace openplx::cli {
+
+enum class DumpKind { None, Tokens, Ast };
+
+struct CliOptions {
+  std::string input;
+  std::optional<std::string> model;
+  std::optional<std::string> output;  // "-" is stdout
+  std::vector<std::string> bundle_dirs;
+  bool strict = false;
+  DumpKind dump = DumpKind::None;
+  bool help = false;
+  bool version = false;
+};
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInputError = 1;
+inline constexpr int kExitUsageError = 2;
+
+// Parses argv[1..]. On a usage error returns nullopt and writes the reason to `error`.
+std::optional<CliOptions> parse_options(const std::vector<std::string>& args, std::string& error);
+
+std::string usage();
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+}  // namespace openplx::cli
