@@ -52,19 +52,19 @@ enum class ExprKind : uint8_t {
   PathString,  // string_value = the path as written; resolved against the file by sema
   Name,        // text = identifier
   This,
-  Member,      // operands[0] . text
-  Call,        // operands[0] = callee (Name or Member), operands[1..] = arguments
-  Unary,       // op, operands[0]
-  Binary,      // operands[0] op operands[1]
-  Array,       // [operands...]
-  Initializer, // {operands...}
-  Error,       // already reported
+  Member,       // operands[0] . text
+  Call,         // operands[0] = callee (Name or Member), operands[1..] = arguments
+  Unary,        // op, operands[0]
+  Binary,       // operands[0] op operands[1]
+  Array,        // [operands...]
+  Initializer,  // {operands...}
+  Error,        // already reported
 };
 
 struct Expr {
   ExprKind kind = ExprKind::Error;
-  char op = 0;  // '+', '-', '*', '/' for Unary and Binary
-  bool quoted = false;     // Name/Member written in backticks
+  char op = 0;          // '+', '-', '*', '/' for Unary and Binary
+  bool quoted = false;  // Name/Member written in backticks
   bool bool_value = false;
   bool multiline = false;  // String from """..."""
   SourceRange range;
@@ -96,12 +96,12 @@ struct Member {
   QualifiedName path;  // attribute name (one part), becomes/assignment path, annotation name, trait name
   bool is_optional = false;
   bool is_static = false;
-  TypeExpr type;                        // Attribute, Becomes
-  std::optional<ExprId> value;          // Attribute, Becomes, Assignment, Annotation
-  bool has_block = false;               // `:` followed by an indented block
-  std::vector<Member> block;            // members applied to the target's instance
-  std::vector<Param> params;            // Method
-  std::optional<TypeRef> return_type;   // Method
+  TypeExpr type;                       // Attribute, Becomes
+  std::optional<ExprId> value;         // Attribute, Becomes, Assignment, Annotation
+  bool has_block = false;              // `:` followed by an indented block
+  std::vector<Member> block;           // members applied to the target's instance
+  std::vector<Param> params;           // Method
+  std::optional<TypeRef> return_type;  // Method
 };
 
 enum class DeclKind : uint8_t { Import, Model, Trait, GlobalAttribute, Operator };
@@ -109,9 +109,9 @@ enum class DeclKind : uint8_t { Import, Model, Trait, GlobalAttribute, Operator 
 struct Decl {
   DeclKind kind = DeclKind::Model;
   SourceRange range;
-  Ident name;                          // Model, Trait, GlobalAttribute
-  bool is_const = false;               // Model
-  std::optional<QualifiedName> base;   // Model, Trait: `is Base`
+  Ident name;                             // Model, Trait, GlobalAttribute
+  bool is_const = false;                  // Model
+  std::optional<QualifiedName> base;      // Model, Trait: `is Base`
   std::span<const QualifiedName> traits;  // Model: `is Base with T1, T2` shorthand
   bool has_body = false;
   std::vector<Member> body;            // Model, Trait

@@ -9,12 +9,23 @@ std::string quote(std::string_view text) {
   std::string out = "\"";
   for (char c : text) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default: out += c;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        out += c;
     }
   }
   return out + "\"";
@@ -36,12 +47,24 @@ void append_expr(std::string& out, const Document& doc, ExprId id) {
   };
   switch (e.kind) {
     case ExprKind::Int:
-    case ExprKind::Real: out += e.text; break;
-    case ExprKind::Bool: out += e.bool_value ? "true" : "false"; break;
-    case ExprKind::String: out += quote(e.string_value); break;
-    case ExprKind::PathString: out += (e.quoted ? "$" : "@") + quote(e.string_value); break;
-    case ExprKind::Name: out += name_text(e.text, e.quoted); break;
-    case ExprKind::This: out += "this"; break;
+    case ExprKind::Real:
+      out += e.text;
+      break;
+    case ExprKind::Bool:
+      out += e.bool_value ? "true" : "false";
+      break;
+    case ExprKind::String:
+      out += quote(e.string_value);
+      break;
+    case ExprKind::PathString:
+      out += (e.quoted ? "$" : "@") + quote(e.string_value);
+      break;
+    case ExprKind::Name:
+      out += name_text(e.text, e.quoted);
+      break;
+    case ExprKind::This:
+      out += "this";
+      break;
     case ExprKind::Member:
       append_expr(out, doc, e.operands[0]);
       out += '.';
@@ -65,15 +88,22 @@ void append_expr(std::string& out, const Document& doc, ExprId id) {
       append_expr(out, doc, e.operands[1]);
       out += ')';
       break;
-    case ExprKind::Array: list(0, "[", "]"); break;
-    case ExprKind::Initializer: list(0, "{", "}"); break;
-    case ExprKind::Error: out += "<error>"; break;
+    case ExprKind::Array:
+      list(0, "[", "]");
+      break;
+    case ExprKind::Initializer:
+      list(0, "{", "}");
+      break;
+    case ExprKind::Error:
+      out += "<error>";
+      break;
   }
 }
 
 class AstDumper {
  public:
-  AstDumper(std::ostream& out, const SourceFile& file, const Document& doc) : out_(out), file_(file), doc_(doc) {}
+  AstDumper(std::ostream& out, const SourceFile& file, const Document& doc)
+      : out_(out), file_(file), doc_(doc) {}
 
   void decl(const Decl& d) {
     std::string line;
@@ -106,17 +136,26 @@ class AstDumper {
   void member(int depth, const Member& m) {
     std::string line;
     switch (m.kind) {
-      case MemberKind::Annotation: line = "annotation " + to_string(m.path); break;
-      case MemberKind::TraitUse: line = "with " + to_string(m.path); break;
+      case MemberKind::Annotation:
+        line = "annotation " + to_string(m.path);
+        break;
+      case MemberKind::TraitUse:
+        line = "with " + to_string(m.path);
+        break;
       case MemberKind::Method:
         line = std::string(m.is_static ? "static fn " : "fn ") + to_string(m.path) + params(m.params);
         if (m.return_type) line += " -> " + type_ref(*m.return_type);
         break;
       case MemberKind::Attribute:
-        line = std::string(m.is_optional ? "optional attr " : "attr ") + to_string(m.path) + " is " + type(m.type);
+        line = std::string(m.is_optional ? "optional attr " : "attr ") + to_string(m.path) + " is " +
+               type(m.type);
         break;
-      case MemberKind::Becomes: line = "becomes " + to_string(m.path) + " -> " + type(m.type); break;
-      case MemberKind::Assignment: line = "assign " + to_string(m.path); break;
+      case MemberKind::Becomes:
+        line = "becomes " + to_string(m.path) + " -> " + type(m.type);
+        break;
+      case MemberKind::Assignment:
+        line = "assign " + to_string(m.path);
+        break;
     }
     if (m.value) line += " = " + expr_to_string(doc_, *m.value);
     if (m.has_block) line += " {block}";
@@ -166,8 +205,10 @@ void dump_tokens(std::ostream& out, const SourceFile& file, const std::vector<To
       case TokenKind::Newline:
       case TokenKind::Indent:
       case TokenKind::Dedent:
-      case TokenKind::EndOfFile: break;
-      default: out << ' ' << quote(file.text().substr(t.begin, t.end - t.begin));
+      case TokenKind::EndOfFile:
+        break;
+      default:
+        out << ' ' << quote(file.text().substr(t.begin, t.end - t.begin));
     }
     out << '\n';
   }

@@ -20,14 +20,21 @@ constexpr std::array kCodes = {
 
 }  // namespace
 
-std::string_view code_name(DiagCode code) { return kCodes[static_cast<size_t>(code)].name; }
-Severity default_severity(DiagCode code) { return kCodes[static_cast<size_t>(code)].severity; }
+std::string_view code_name(DiagCode code) {
+  return kCodes[static_cast<size_t>(code)].name;
+}
+Severity default_severity(DiagCode code) {
+  return kCodes[static_cast<size_t>(code)].severity;
+}
 
 std::string_view severity_name(Severity severity) {
   switch (severity) {
-    case Severity::Note: return "note";
-    case Severity::Warning: return "warning";
-    case Severity::Error: return "error";
+    case Severity::Note:
+      return "note";
+    case Severity::Warning:
+      return "warning";
+    case Severity::Error:
+      return "error";
   }
   return "error";
 }
@@ -79,8 +86,8 @@ void print_diagnostics(std::ostream& out, const SourceManager& sources, const st
   size_t errors = 0;
   for (const Diagnostic& diag : diags) {
     if (diag.severity == Severity::Error && ++errors > max_errors) {
-      out << "note: too many errors, stopping after " << max_errors << " [" << code_name(DiagCode::TooManyErrors)
-          << "]\n";
+      out << "note: too many errors, stopping after " << max_errors << " ["
+          << code_name(DiagCode::TooManyErrors) << "]\n";
       return;
     }
     print_diagnostic(out, sources, diag);

@@ -5,11 +5,21 @@
 namespace openplx::frontend {
 namespace {
 
-bool is_ident_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-bool is_ident_char(char c) { return is_ident_start(c) || is_digit(c); }
-bool is_line_end(char c) { return c == '\n' || c == '\r'; }
-bool is_closing_bracket(char c) { return c == ')' || c == ']' || c == '}'; }
+bool is_ident_start(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+bool is_ident_char(char c) {
+  return is_ident_start(c) || is_digit(c);
+}
+bool is_line_end(char c) {
+  return c == '\n' || c == '\r';
+}
+bool is_closing_bracket(char c) {
+  return c == ')' || c == ']' || c == '}';
+}
 
 TokenKind keyword_kind(std::string_view word) {
   switch (word.size()) {
@@ -39,7 +49,8 @@ TokenKind keyword_kind(std::string_view word) {
       if (word == "operator") return TokenKind::KwOperator;
       if (word == "optional") return TokenKind::KwOptional;
       break;
-    default: break;
+    default:
+      break;
   }
   return TokenKind::Identifier;
 }
@@ -58,9 +69,7 @@ class Lexer {
     uint32_t line_indent;  // indentation of the line that opened it
   };
 
-  char peek(uint32_t ahead = 0) const {
-    return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0';
-  }
+  char peek(uint32_t ahead = 0) const { return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0'; }
   bool at_end() const { return pos_ >= text_.size(); }
   void emit(TokenKind kind, uint32_t begin, uint32_t end) { tokens_.push_back({kind, begin, end}); }
   void error(DiagCode code, uint32_t begin, uint32_t end, std::string message) {
@@ -79,6 +88,24 @@ class Lexer {
   // Reads the indentation of a fresh line. Returns false for blank and comment-only lines (consumed).
   bool start_line();
   uint32_t recover_tab_column(uint32_t column) const;
+  // True when the last token cannot end an expression (`,`, an opening bracket, an operator, `.`).
+  bool expression_continues() const {
+    if (tokens_.empty()) return false;
+    switch (tokens_.back().kind) {
+      case TokenKind::Comma:
+      case TokenKind::LParen:
+      case TokenKind::LBracket:
+      case TokenKind::LBrace:
+      case TokenKind::Plus:
+      case TokenKind::Minus:
+      case TokenKind::Star:
+      case TokenKind::Slash:
+      case TokenKind::Dot:
+        return true;
+      default:
+        return false;
+    }
+  }
   void apply_indentation(uint32_t column, uint32_t at, bool tabbed);
   void lex_token();
   void lex_number();
@@ -93,7 +120,8 @@ class Lexer {
   // the parser that the expression it is reading was cut short by an error already reported.
   void report_unclosed_bracket(uint32_t at) {
     const OpenBracket& open = brackets_.front();
-    error(DiagCode::UnclosedBracket, open.offset, open.offset + 1, std::string("`") + open.kind + "` is never closed");
+    error(DiagCode::UnclosedBracket, open.offset, open.offset + 1,
+          std::string("`") + open.kind + "` is never closed");
     brackets_.clear();
     emit(TokenKind::Error, at, at);
   }
@@ -152,15 +180,18 @@ bool Lexer::start_line() {
     return false;
   }
   if (!brackets_.empty()) {
-    // Inside brackets a line continues the expression, unless it falls back to (or before) the column of
-    // the line that opened the bracket: then the bracket was most likely never closed.
-    if (column > brackets_.front().line_indent || is_closing_bracket(c)) return true;
+    // Inside brackets a line continues the expression. The one exception: a line that falls back to (or
+    // before) the column of the line that opened the bracket, after a line that ended on a complete
+    // operand, starts something new; the bracket was most likely never closed.
+    if (column > brackets_.front().line_indent || is_closing_bracket(c) || expression_continues())
+      return true;
     report_unclosed_bracket(line_begin);
     if (!last_is_layout()) emit(TokenKind::Newline, line_begin, line_begin);
   }
   const bool tabbed = first_tab != UINT32_MAX;
   if (tabbed) {
-    error(DiagCode::TabIndentation, first_tab, first_tab + 1, "tabs are not allowed for indentation; use spaces");
+    error(DiagCode::TabIndentation, first_tab, first_tab + 1,
+          "tabs are not allowed for indentation; use spaces");
     column = recover_tab_column(column);
   }
   apply_indentation(column, pos_, tabbed);
@@ -214,7 +245,9 @@ void Lexer::lex_token() {
     case ' ':
     case '\t':
     case '\f':
-    case '\v': ++pos_; return;
+    case '\v':
+      ++pos_;
+      return;
     case '\n':
     case '\r':
       if (brackets_.empty() && !last_is_layout()) emit(TokenKind::Newline, begin, begin + 1);
@@ -224,7 +257,9 @@ void Lexer::lex_token() {
     case '#':
       while (!at_end() && !is_line_end(peek())) ++pos_;
       return;
-    case '`': lex_quoted_identifier(); return;
+    case '`':
+      lex_quoted_identifier();
+      return;
     case '"':
       if (peek(1) == '"' && peek(2) == '"') {
         lex_multiline_string();
@@ -232,14 +267,36 @@ void Lexer::lex_token() {
         lex_string();
       }
       return;
-    case '@': lex_path_string(TokenKind::PathString); return;
-    case '$': lex_path_string(TokenKind::DollarPathString); return;
-    case ':': ++pos_; emit(TokenKind::Colon, begin, pos_); return;
-    case '.': ++pos_; emit(TokenKind::Dot, begin, pos_); return;
-    case ',': ++pos_; emit(TokenKind::Comma, begin, pos_); return;
-    case '+': ++pos_; emit(TokenKind::Plus, begin, pos_); return;
-    case '*': ++pos_; emit(TokenKind::Star, begin, pos_); return;
-    case '/': ++pos_; emit(TokenKind::Slash, begin, pos_); return;
+    case '@':
+      lex_path_string(TokenKind::PathString);
+      return;
+    case '$':
+      lex_path_string(TokenKind::DollarPathString);
+      return;
+    case ':':
+      ++pos_;
+      emit(TokenKind::Colon, begin, pos_);
+      return;
+    case '.':
+      ++pos_;
+      emit(TokenKind::Dot, begin, pos_);
+      return;
+    case ',':
+      ++pos_;
+      emit(TokenKind::Comma, begin, pos_);
+      return;
+    case '+':
+      ++pos_;
+      emit(TokenKind::Plus, begin, pos_);
+      return;
+    case '*':
+      ++pos_;
+      emit(TokenKind::Star, begin, pos_);
+      return;
+    case '/':
+      ++pos_;
+      emit(TokenKind::Slash, begin, pos_);
+      return;
     case '-':
       if (peek(1) == '>') {
         pos_ += 2;
@@ -249,13 +306,26 @@ void Lexer::lex_token() {
         emit(TokenKind::Minus, begin, pos_);
       }
       return;
-    case '(': lex_bracket(c, TokenKind::LParen); return;
-    case '[': lex_bracket(c, TokenKind::LBracket); return;
-    case '{': lex_bracket(c, TokenKind::LBrace); return;
-    case ')': lex_closing_bracket(c, TokenKind::RParen); return;
-    case ']': lex_closing_bracket(c, TokenKind::RBracket); return;
-    case '}': lex_closing_bracket(c, TokenKind::RBrace); return;
-    default: break;
+    case '(':
+      lex_bracket(c, TokenKind::LParen);
+      return;
+    case '[':
+      lex_bracket(c, TokenKind::LBracket);
+      return;
+    case '{':
+      lex_bracket(c, TokenKind::LBrace);
+      return;
+    case ')':
+      lex_closing_bracket(c, TokenKind::RParen);
+      return;
+    case ']':
+      lex_closing_bracket(c, TokenKind::RBracket);
+      return;
+    case '}':
+      lex_closing_bracket(c, TokenKind::RBrace);
+      return;
+    default:
+      break;
   }
   if (is_ident_start(c)) {
     while (!at_end() && is_ident_char(peek())) ++pos_;
@@ -337,7 +407,8 @@ void Lexer::lex_string() {
     ++pos_;
   }
   if (peek() != '"') {
-    error(DiagCode::UnterminatedString, begin, begin + 1, "unterminated string: missing closing `\"` on this line");
+    error(DiagCode::UnterminatedString, begin, begin + 1,
+          "unterminated string: missing closing `\"` on this line");
     emit(TokenKind::String, begin, pos_);
     return;
   }
@@ -360,7 +431,8 @@ void Lexer::lex_multiline_string() {
     }
     ++pos_;
   }
-  error(DiagCode::UnterminatedMultilineString, begin, begin + 3, "unterminated multi-line string: missing `\"\"\"`");
+  error(DiagCode::UnterminatedMultilineString, begin, begin + 3,
+        "unterminated multi-line string: missing `\"\"\"`");
   emit(TokenKind::MultilineString, begin, pos_);
 }
 
@@ -392,7 +464,8 @@ void Lexer::lex_bracket(char c, TokenKind kind) {
 void Lexer::lex_closing_bracket(char c, TokenKind kind) {
   const uint32_t begin = pos_++;
   if (brackets_.empty()) {
-    error(DiagCode::UnmatchedBracket, begin, pos_, std::string("`") + c + "` has no matching opening bracket");
+    error(DiagCode::UnmatchedBracket, begin, pos_,
+          std::string("`") + c + "` has no matching opening bracket");
     emit(TokenKind::Error, begin, pos_);
     return;
   }
@@ -418,10 +491,11 @@ void Lexer::lex_invalid() {
     while (!at_end() && invalid(peek())) ++pos_;
   }
   if (pos_ == begin) ++pos_;
-  std::string message = first >= 0x20 && first < 0x7f
-                            ? std::string("invalid character `") + text_[begin] + "`"
-                            : (first >= 0x80 ? "invalid character: names are ASCII; write other names in backticks"
-                                             : "invalid control character");
+  std::string message =
+      first >= 0x20 && first < 0x7f
+          ? std::string("invalid character `") + text_[begin] + "`"
+          : (first >= 0x80 ? "invalid character: names are ASCII; write other names in backticks"
+                           : "invalid control character");
   error(DiagCode::InvalidCharacter, begin, pos_, std::move(message));
   emit(TokenKind::Error, begin, pos_);
 }
@@ -470,7 +544,8 @@ std::string decode_string(TokenKind kind, std::string_view text) {
       if (!body.empty() && body.back() == '"') body.remove_suffix(1);
       return std::string(body);
     }
-    default: return std::string(text);
+    default:
+      return std::string(text);
   }
 }
 

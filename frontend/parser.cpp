@@ -63,8 +63,8 @@ class Parser {
   // Where to point at the current token; at the end of a line, just after its last real token rather
   // than after a trailing comment.
   SourceRange here() const {
-    const bool layout = at(TokenKind::Newline) || at(TokenKind::EndOfFile) || at(TokenKind::Dedent) ||
-                        at(TokenKind::Indent);
+    const bool layout =
+        at(TokenKind::Newline) || at(TokenKind::EndOfFile) || at(TokenKind::Dedent) || at(TokenKind::Indent);
     return layout && pos_ > 0 ? SourceRange{file_id_, last_end_, last_end_} : token_range(cur());
   }
   std::string describe(const Token& t) const {
@@ -72,8 +72,10 @@ class Parser {
       case TokenKind::Identifier:
       case TokenKind::QuotedIdentifier:
       case TokenKind::Int:
-      case TokenKind::Real: return std::string(token_kind_description(t.kind)) + " `" + std::string(text(t)) + "`";
-      default: return std::string(token_kind_description(t.kind));
+      case TokenKind::Real:
+        return std::string(token_kind_description(t.kind)) + " `" + std::string(text(t)) + "`";
+      default:
+        return std::string(token_kind_description(t.kind));
     }
   }
   bool expect(TokenKind k, std::string_view what) {
@@ -123,8 +125,8 @@ class Parser {
     uint32_t count = 0;
     if (first_operand != SIZE_MAX) {
       count = static_cast<uint32_t>(scratch_.size() - first_operand);
-      doc_.operand_pool.insert(doc_.operand_pool.end(), scratch_.begin() + static_cast<std::ptrdiff_t>(first_operand),
-                               scratch_.end());
+      doc_.operand_pool.insert(doc_.operand_pool.end(),
+                               scratch_.begin() + static_cast<std::ptrdiff_t>(first_operand), scratch_.end());
       scratch_.resize(first_operand);
     }
     // Chains like `1 + 1 + ...` or `a.b.c...` parse without recursion but still build deep trees; bound
@@ -176,7 +178,7 @@ class Parser {
   Document doc_;
   std::vector<ExprId> scratch_;
   std::vector<std::pair<uint32_t, uint32_t>> operand_spans_;  // per expression: pool offset and count
-  std::vector<uint32_t> heights_;                              // per expression: height of its tree
+  std::vector<uint32_t> heights_;                             // per expression: height of its tree
   size_t pos_ = 0;
   uint32_t last_end_ = 0;
   int depth_ = 0;
@@ -198,14 +200,17 @@ Document Parser::run() {
   while (!at(TokenKind::EndOfFile)) {
     switch (kind()) {
       case TokenKind::Newline:
-      case TokenKind::Dedent: advance(); continue;
+      case TokenKind::Dedent:
+        advance();
+        continue;
       case TokenKind::Indent:
         error(DiagCode::UnexpectedToken, token_range(cur()),
               "unexpected indentation: top-level declarations start in column 1");
         skip_block();
         panic_ = false;
         continue;
-      default: parse_top_decl();
+      default:
+        parse_top_decl();
     }
   }
   for (size_t i = 0; i < doc_.exprs.size(); ++i) {
@@ -244,12 +249,20 @@ bool Parser::expect_line_end() {
 
 void Parser::parse_top_decl() {
   switch (kind()) {
-    case TokenKind::KwImport: parse_import(); break;
-    case TokenKind::KwTrait: parse_trait(); break;
-    case TokenKind::KwOperator: parse_operator(); break;
+    case TokenKind::KwImport:
+      parse_import();
+      break;
+    case TokenKind::KwTrait:
+      parse_trait();
+      break;
+    case TokenKind::KwOperator:
+      parse_operator();
+      break;
     case TokenKind::KwConst:
     case TokenKind::Identifier:
-    case TokenKind::QuotedIdentifier: parse_model_or_global(); break;
+    case TokenKind::QuotedIdentifier:
+      parse_model_or_global();
+      break;
     case TokenKind::KwFn:
     case TokenKind::KwStatic:
     case TokenKind::KwWith:
@@ -258,7 +271,8 @@ void Parser::parse_top_decl() {
       error(DiagCode::MisplacedDeclaration, token_range(cur()),
             "`" + std::string(text(cur())) + "` is only allowed inside a model or trait body");
       break;
-    default: error_here("a model, trait, import, operator or global attribute declaration");
+    default:
+      error_here("a model, trait, import, operator or global attribute declaration");
   }
   if (panic_) sync_line();
 }
@@ -320,11 +334,21 @@ void Parser::parse_operator() {
   const uint32_t begin = cur().begin;
   advance();
   switch (kind()) {
-    case TokenKind::Plus: decl.op = '+'; break;
-    case TokenKind::Minus: decl.op = '-'; break;
-    case TokenKind::Star: decl.op = '*'; break;
-    case TokenKind::Slash: decl.op = '/'; break;
-    default: error_here("one of `+`, `-`, `*`, `/` after `operator`"); return;
+    case TokenKind::Plus:
+      decl.op = '+';
+      break;
+    case TokenKind::Minus:
+      decl.op = '-';
+      break;
+    case TokenKind::Star:
+      decl.op = '*';
+      break;
+    case TokenKind::Slash:
+      decl.op = '/';
+      break;
+    default:
+      error_here("one of `+`, `-`, `*`, `/` after `operator`");
+      return;
   }
   advance();
   if (!expect(TokenKind::LParen, "`(`")) return;
@@ -403,7 +427,8 @@ bool Parser::parse_decl_body(Decl& decl, bool colon_seen, uint32_t colon_begin) 
     return true;
   }
   if (colon_seen) {
-    error(DiagCode::ExpectedIndentedBlock, {file_id_, colon_begin, colon_begin + 1}, "Expected indented block");
+    error(DiagCode::ExpectedIndentedBlock, {file_id_, colon_begin, colon_begin + 1},
+          "Expected indented block");
     panic_ = false;
     return false;
   }
@@ -440,7 +465,9 @@ void Parser::parse_block(std::vector<Member>& out, BlockContext context) {
 void Parser::parse_member(std::vector<Member>& out, BlockContext context) {
   const uint32_t begin = cur().begin;
   switch (kind()) {
-    case TokenKind::Dot: parse_annotation(out); return;
+    case TokenKind::Dot:
+      parse_annotation(out);
+      return;
     case TokenKind::KwWith: {
       advance();
       if (!at_name()) {
@@ -456,7 +483,9 @@ void Parser::parse_member(std::vector<Member>& out, BlockContext context) {
       return;
     }
     case TokenKind::KwStatic:
-    case TokenKind::KwFn: parse_method(out, context); return;
+    case TokenKind::KwFn:
+      parse_method(out, context);
+      return;
     case TokenKind::KwOperator:
     case TokenKind::KwImport:
     case TokenKind::KwTrait:
@@ -464,7 +493,8 @@ void Parser::parse_member(std::vector<Member>& out, BlockContext context) {
       error(DiagCode::MisplacedDeclaration, token_range(cur()),
             "`" + std::string(text(cur())) + "` declarations are only allowed at the top level");
       return;
-    default: break;
+    default:
+      break;
   }
   Member member;
   member.kind = MemberKind::Attribute;
@@ -546,7 +576,7 @@ void Parser::parse_annotation(std::vector<Member>& out) {
   advance();  // `.`
   Member member;
   member.kind = MemberKind::Annotation;
-  if (!at(TokenKind::Identifier)) {
+  if (!at_name()) {
     error_here("an annotation name after `.`");
     return;
   }
@@ -617,8 +647,8 @@ QualifiedName Parser::parse_qualified_name() {
   const size_t first = doc_.ident_pool.size();
   const uint32_t begin = cur().begin;
   doc_.ident_pool.push_back(parse_ident());
-  while (at(TokenKind::Dot) && (peek_token().kind == TokenKind::Identifier ||
-                                peek_token().kind == TokenKind::QuotedIdentifier)) {
+  while (at(TokenKind::Dot) &&
+         (peek_token().kind == TokenKind::Identifier || peek_token().kind == TokenKind::QuotedIdentifier)) {
     advance();
     doc_.ident_pool.push_back(parse_ident());
   }
@@ -805,7 +835,8 @@ ExprId Parser::parse_primary() {
     case TokenKind::MultilineString:
     case TokenKind::PathString:
     case TokenKind::KwTrue:
-    case TokenKind::KwFalse: return parse_literal();
+    case TokenKind::KwFalse:
+      return parse_literal();
     case TokenKind::DollarPathString:
       error(DiagCode::DollarPathOutsideImport, token_range(cur()),
             "`$\"...\"` paths are only allowed in `import`; write @\"...\"");
@@ -832,10 +863,14 @@ ExprId Parser::parse_primary() {
       advance();
       ExprId inner = parse_expr();
       if (!panic_) expect(TokenKind::RParen, "`)`");
+      // The parentheses belong to the expression as written, so ranges built from it cover them.
+      if (!panic_) doc_.exprs[inner].range = range_from(begin);
       return inner;
     }
-    case TokenKind::LBracket: return parse_list(ExprKind::Array, TokenKind::RBracket, "`,` or `]`");
-    case TokenKind::LBrace: return parse_list(ExprKind::Initializer, TokenKind::RBrace, "`,` or `}`");
+    case TokenKind::LBracket:
+      return parse_list(ExprKind::Array, TokenKind::RBracket, "`,` or `]`");
+    case TokenKind::LBrace:
+      return parse_list(ExprKind::Initializer, TokenKind::RBrace, "`,` or `}`");
     default:
       error_here("an expression");
       return error_expr(begin);
@@ -876,8 +911,9 @@ ExprId Parser::parse_literal() {
       // Too long for Int: also read as a Real, in case the attribute wants one (sema decides).
       auto as_real = std::from_chars(e.text.data(), e.text.data() + e.text.size(), e.real_value);
       if (!e.int_value && as_real.ec == std::errc::result_out_of_range) {
-        sink_.report(DiagCode::NumberOutOfRange, e.range,
-                     "number `" + std::string(e.text.substr(0, 20)) + "...` is out of the range of a 64-bit float");
+        sink_.report(
+            DiagCode::NumberOutOfRange, e.range,
+            "number `" + std::string(e.text.substr(0, 20)) + "...` is out of the range of a 64-bit float");
       }
       break;
     }
@@ -918,7 +954,8 @@ ExprId Parser::parse_literal() {
 
 }  // namespace
 
-Document parse(const SourceFile& file, FileId file_id, const std::vector<Token>& tokens, DiagnosticSink& sink) {
+Document parse(const SourceFile& file, FileId file_id, const std::vector<Token>& tokens,
+               DiagnosticSink& sink) {
   return Parser(file, file_id, tokens, sink).run();
 }
 

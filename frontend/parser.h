@@ -17,7 +17,8 @@ namespace openplx::frontend {
 
 inline constexpr int kMaxNesting = 200;
 
-Document parse(const SourceFile& file, FileId file_id, const std::vector<Token>& tokens, DiagnosticSink& sink);
+Document parse(const SourceFile& file, FileId file_id, const std::vector<Token>& tokens,
+               DiagnosticSink& sink);
 
 // Lexes and parses one file already in `sources`.
 Document parse_file(const SourceManager& sources, FileId file_id, DiagnosticSink& sink);

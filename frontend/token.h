@@ -16,14 +16,14 @@ enum class TokenKind : uint8_t {
   Dedent,
   EndOfFile,
   // Names and literals
-  Identifier,       // plain `name`
-  QuotedIdentifier, // `a.b` written in backticks; the range covers the backticks
+  Identifier,        // plain `name`
+  QuotedIdentifier,  // `a.b` written in backticks; the range covers the backticks
   Int,
   Real,
-  String,           // "..."
-  MultilineString,  // """..."""
-  PathString,       // @"..."
-  DollarPathString, // $"..." (imports only)
+  String,            // "..."
+  MultilineString,   // """..."""
+  PathString,        // @"..."
+  DollarPathString,  // $"..." (imports only)
   // Keywords
   KwIs,
   KwBecomes,

@@ -7,7 +7,7 @@ mapfile -t files < <(git ls-files '*.cpp' '*.h' 2>/dev/null || find . -name '*.c
 [[ ${#files[@]} -eq 0 ]] && exit 0
 if ! clang-format --dry-run --Werror "${files[@]}" 2>/tmp/openplx-format.log; then
   echo "error: files are not clang-formatted (run: clang-format -i \$(git ls-files '*.cpp' '*.h')):" >&2
-  grep -o '^[^:]*:' /tmp/openplx-format.log | sort -u >&2
+  sed -n 's/^\([^:]*\.\(cpp\|h\)\):[0-9].*/\1/p' /tmp/openplx-format.log | sort -u >&2
   exit 1
 fi
 echo "== format check: OK"

@@ -67,7 +67,8 @@ TEST_P(CorpusParse, ParsesCleanlyAndMatchesGolden) {
   fe::dump_ast(dump, sources.file(*id), doc);
   const fs::path golden = fs::path(OPENPLX_TEST_DATA_DIR) / "golden/ast" / input.golden_name;
   ASSERT_TRUE(fs::exists(golden)) << golden << " missing; run tools/update-golden";
-  EXPECT_EQ(dump.str(), read(golden)) << "AST of " << input.file << " changed; review, then tools/update-golden";
+  EXPECT_EQ(dump.str(), read(golden))
+      << "AST of " << input.file << " changed; review, then tools/update-golden";
 }
 
 std::string test_name(const ::testing::TestParamInfo<Input>& info) {

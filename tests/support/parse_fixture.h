@@ -61,9 +61,10 @@ class ParseTest : public ::testing::Test {
   std::string all_diags() const {
     std::string out;
     for (const fe::Diagnostic& d : sink_.diagnostics()) {
-      fe::LineCol pos = d.range.file == fe::kNoFile ? fe::LineCol{} : sources_.file(d.range.file).line_col(d.range.begin);
-      out += "  " + std::to_string(pos.line) + ':' + std::to_string(pos.col) + ' ' + std::string(fe::code_name(d.code)) +
-             ": " + d.message + '\n';
+      fe::LineCol pos =
+          d.range.file == fe::kNoFile ? fe::LineCol{} : sources_.file(d.range.file).line_col(d.range.begin);
+      out += "  " + std::to_string(pos.line) + ':' + std::to_string(pos.col) + ' ' +
+             std::string(fe::code_name(d.code)) + ": " + d.message + '\n';
     }
     return out;
   }

@@ -17,8 +17,9 @@ namespace {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("openplx_cli_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ =
+        fs::temp_directory_path() /
+        ("openplx_cli_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -90,17 +91,20 @@ TEST_F(Cli, MissingFileIsAnInputError) {
 TEST_F(Cli, DocumentedMessagesPrintedWithLocationAndCaret) {
   std::string file = write("broken.openplx", "Broken:\n");
   EXPECT_EQ(run({file}), 1);
-  EXPECT_EQ(err_.str(), file + ":1:7: error: Expected indented block [expected-block]\n"
-                               "  Broken:\n"
-                               "        ^\n" +
-                            file + ":1:1: error: No model could be found [no-model]\n"
-                                   "  Broken:\n"
-                                   "  ^\n");
+  EXPECT_EQ(err_.str(), file +
+                            ":1:7: error: Expected indented block [expected-block]\n"
+                            "  Broken:\n"
+                            "        ^\n" +
+                            file +
+                            ":1:1: error: No model could be found [no-model]\n"
+                            "  Broken:\n"
+                            "  ^\n");
   file = write("thing.openplx", "Thing:\n    speed\n");
   EXPECT_EQ(run({file}), 1);
-  EXPECT_EQ(err_.str(), file + ":2:10: error: Expected an is keyword [expected-is]\n"
-                               "      speed\n"
-                               "           ^\n");
+  EXPECT_EQ(err_.str(), file +
+                            ":2:10: error: Expected an is keyword [expected-is]\n"
+                            "      speed\n"
+                            "           ^\n");
 }
 
 TEST_F(Cli, AllSyntaxErrorsOfAFileInOneRun) {
@@ -170,8 +174,9 @@ TEST_F(Cli, OutputFileIsWrittenWholeAndLeavesNoTemporaries) {
   const fs::path out = dir_ / "scene.ast";
   EXPECT_EQ(run({file, "--dump=ast", "-o", out.string()}), 0);
   EXPECT_EQ(out_.str(), "");
-  EXPECT_EQ(read(out), "model Rod @1:1-2:24\n  attr length is Real = 1.0 @2:5-2:24\nmodel Scene @3:1-4:15\n"
-                       "  attr rod is Rod @4:5-4:15\n");
+  EXPECT_EQ(read(out),
+            "model Rod @1:1-2:24\n  attr length is Real = 1.0 @2:5-2:24\nmodel Scene @3:1-4:15\n"
+            "  attr rod is Rod @4:5-4:15\n");
   size_t entries = 0;
   for (const auto& entry : fs::directory_iterator(dir_)) entries += entry.is_regular_file();
   EXPECT_EQ(entries, 2u);  // the input and the output, no temporary file left behind

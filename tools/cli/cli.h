@@ -1,6 +1,7 @@
 // The `openplx2mjcf` command line, callable in-process so tests run it under the sanitizers.
 //
-//   openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast] [--help] [--version]
+//   openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast] [--help]
+//   [--version]
 //
 // Exit status: 0 success (warnings allowed), 1 input errors (diagnostics on `err`), 2 usage errors.
 #pragma once
