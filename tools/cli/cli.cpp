@@ -6,6 +6,10 @@
 #include <string_view>
 
 #include "frontend/ast_dump.h"
+#include "frontend/bundles.h"
+#include "frontend/evaluator.h"
+#include "frontend/program.h"
+#include "frontend/value_format.h"
 #include "frontend/diagnostics.h"
 #include "frontend/lexer.h"
 #include "frontend/parser.h"
@@ -47,31 +51,44 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
   return true;
 }
 
-void report_unknown_model(const fe::Document& doc, const std::string& name, fe::DiagnosticSink& sink,
-                          const fe::SourceFile& file) {
-  std::string models;
-  for (const fe::Decl& decl : doc.decls) {
-    if (decl.kind != fe::DeclKind::Model) continue;
-    models += (models.empty() ? "" : ", ") + std::string(decl.name.text);
+// Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
+bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink, std::ostream& text,
+              std::ostream& err) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(options.input, ec)) {
+    err << options.input << ": error: "
+        << (std::filesystem::is_directory(options.input, ec) ? "is a directory, not a file" : "cannot open file")
+        << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
+    return false;
   }
-  sink.report(fe::DiagCode::UnknownModel, {doc.file, file.content_begin(), file.content_begin()},
-              "no model named `" + name + "` in this file" +
-                  (models.empty() ? std::string() : "; its models are " + models));
+  fe::Program program(sources, sink);
+  program.set_bundles(fe::discover_bundles(fe::bundle_search_path(options.bundle_dirs), sources, sink));
+  fe::DocumentInfo* doc = program.load_main(options.input);
+  if (!doc || sink.has_errors()) return true;  // syntax errors: evaluating would only repeat them
+  fe::ModelInfo* root_model = fe::select_root_model(program, doc, options.model ? &*options.model : nullptr);
+  if (!root_model) return true;
+  fe::Evaluator evaluator(program, sink);
+  fe::ObjectId root = evaluator.instantiate_root(root_model);
+  if (root == fe::kNoObject) return true;
+  evaluator.evaluate_all(root);
+  if (options.dump == DumpKind::Values) fe::dump_values(text, evaluator, root);
+  return true;
 }
 
 }  // namespace
 
 std::string usage() {
-  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast]\n"
+  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast|values]\n"
          "                    [--help] [--version]\n"
          "\n"
-         "Reads an OpenPLX model and checks it. With --dump, prints the tokens or the syntax tree.\n"
+         "Reads an OpenPLX model and evaluates it. With --dump, prints the tokens, the syntax tree or the\n"
+         "evaluated attribute values of the root model.\n"
          "\n"
          "  --model NAME   the root model (default: the last model in FILE)\n"
          "  -o OUT         write the output to OUT ('-' for stdout, the default)\n"
          "  -B DIR         an extra bundle directory (repeatable)\n"
          "  --strict       treat warnings as errors\n"
-         "  --dump=KIND    tokens | ast\n"
+         "  --dump=KIND    tokens | ast | values\n"
          "  --help         show this text\n"
          "  --version      show the version\n"
          "\n"
@@ -130,8 +147,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
         options.dump = DumpKind::Tokens;
       } else if (value == "ast") {
         options.dump = DumpKind::Ast;
+      } else if (value == "values") {
+        options.dump = DumpKind::Values;
       } else {
-        error = "unknown dump kind '" + value + "' (expected tokens or ast)";
+        error = "unknown dump kind '" + value + "' (expected tokens, ast or values)";
         return std::nullopt;
       }
       continue;
@@ -183,27 +202,22 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
 
   fe::SourceManager sources;
   fe::DiagnosticSink sink(options->strict);
-  std::string io_error;
-  std::optional<fe::FileId> file_id = sources.load(options->input, io_error);
-  if (!file_id) {
-    err << options->input << ": error: " << io_error << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
-    return kExitInputError;
-  }
-  const fe::SourceFile& file = sources.file(*file_id);
-
   std::ostringstream text;
-  if (options->dump == DumpKind::Tokens) {
-    fe::dump_tokens(text, file, fe::lex(file, *file_id, sink));
-  } else {
-    fe::Document doc = fe::parse_file(sources, *file_id, sink);
-    if (options->dump == DumpKind::Ast) {
-      fe::dump_ast(text, file, doc);
-    } else if (options->model) {
-      if (!doc.find_model(*options->model)) report_unknown_model(doc, *options->model, sink, file);
-    } else if (!doc.last_model()) {
-      sink.report(fe::DiagCode::NoModel, {*file_id, file.content_begin(), file.content_begin()},
-                  "No model could be found");
+  if (options->dump == DumpKind::Tokens || options->dump == DumpKind::Ast) {
+    std::string io_error;
+    std::optional<fe::FileId> file_id = sources.load(options->input, io_error);
+    if (!file_id) {
+      err << options->input << ": error: " << io_error << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
+      return kExitInputError;
     }
+    const fe::SourceFile& file = sources.file(*file_id);
+    if (options->dump == DumpKind::Tokens) {
+      fe::dump_tokens(text, file, fe::lex(file, *file_id, sink));
+    } else {
+      fe::dump_ast(text, file, fe::parse_file(sources, *file_id, sink));
+    }
+  } else if (!evaluate(*options, sources, sink, text, err)) {
+    return kExitInputError;
   }
 
   fe::print_diagnostics(err, sources, sink.diagnostics());

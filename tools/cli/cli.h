@@ -13,7 +13,7 @@
 
 namespace openplx::cli {
 
-enum class DumpKind { None, Tokens, Ast };
+enum class DumpKind { None, Tokens, Ast, Values };
 
 struct CliOptions {
   std::string input;

@@ -1,0 +1,46 @@
+// Bundle discovery (spec/openplx-language.md §15). A bundle is a folder holding `config.openplx`
+// (`config is BundleConfig:` with name, version, dependencies); its sub-folders are namespaces.
+//
+// Search order: the project's own bundles/ (installed beside the executable, else the source tree), then
+// each folder of OPENPLX_BUNDLE_PATH (':'-separated), then each -B folder. A folder is a bundle itself or
+// a folder of bundles. When two bundles share a name, the first found wins.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frontend/diagnostics.h"
+#include "frontend/source.h"
+
+namespace openplx::frontend {
+
+struct BundleDependency {
+  std::string name;
+  std::string version;  // empty when not pinned
+};
+
+struct BundleConfig {
+  std::string name;
+  std::string version;
+  std::vector<BundleDependency> dependencies;
+  std::string dir;  // absolute, normalised
+};
+
+// Reads `dir/config.openplx`. Problems are reported to `sink` at the config file's lines.
+std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceManager& sources, DiagnosticSink& sink);
+
+// The folders searched for bundles, in order: project bundles, OPENPLX_BUNDLE_PATH, then `extra_dirs`.
+std::vector<std::string> bundle_search_path(const std::vector<std::string>& extra_dirs);
+
+// Every bundle under the search path (first of each name wins).
+std::vector<BundleConfig> discover_bundles(const std::vector<std::string>& search_path, SourceManager& sources,
+                                           DiagnosticSink& sink);
+
+// The enclosing bundle folder of `file` (the nearest ancestor folder with config.openplx), if any.
+std::optional<std::string> enclosing_bundle_dir(const std::string& file);
+
+// "Name" or "Name@1.2.3".
+BundleDependency parse_dependency(const std::string& text);
+
+}  // namespace openplx::frontend

@@ -1,0 +1,1135 @@
+#include "frontend/evaluator.h"
+
+#include <cmath>
+#include <filesystem>
+#include <unordered_set>
+
+#include "frontend/natives/builtin_natives.h"
+#include "frontend/value_format.h"
+
+namespace openplx::frontend {
+namespace {
+
+// Deep enough for any real model (MuJoCo stops near 100 levels); a recursive model hits it quickly.
+constexpr uint32_t kMaxInstanceDepth = 1000;
+// Attributes whose values depend on each other in a chain this long would overflow the stack.
+constexpr int kMaxEvalDepth = 2000;
+
+std::string join_key(const std::string& rel, std::string_view slot) {
+  return rel.empty() ? std::string(slot) : rel + "." + std::string(slot);
+}
+
+bool is_primitive_name(std::string_view name, TypeKind& kind) {
+  if (name == "Real") kind = TypeKind::Real;
+  else if (name == "Int") kind = TypeKind::Int;
+  else if (name == "Bool") kind = TypeKind::Bool;
+  else if (name == "String") kind = TypeKind::String;
+  else return false;
+  return true;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------- types
+
+std::string Type::describe() const {
+  std::string out;
+  switch (kind) {
+    case TypeKind::Error: out = "<error>"; break;
+    case TypeKind::Int: out = "Int"; break;
+    case TypeKind::Real: out = "Real"; break;
+    case TypeKind::Bool: out = "Bool"; break;
+    case TypeKind::String: out = "String"; break;
+    case TypeKind::Model: out = model->qualified; break;
+    case TypeKind::Union:
+      for (size_t i = 0; i < alternatives.size(); ++i) out += (i ? " or " : "") + alternatives[i].describe();
+      break;
+  }
+  return is_array ? out + "[]" : out;
+}
+
+std::string ObjectGraph::path(ObjectId id) const {
+  std::vector<const Object*> chain;
+  for (ObjectId cur = id; cur != kNoObject; cur = objects[cur].owner) chain.push_back(&objects[cur]);
+  std::string out;
+  const Object* top = chain.back();
+  const bool named_top = top->is_const_singleton || (root != kNoObject && top != &objects[root]);
+  if (named_top) out = top->name;
+  for (auto it = chain.rbegin() + 1; it != chain.rend(); ++it) {
+    if (!out.empty()) out += '.';
+    out += (*it)->name;
+  }
+  return out;
+}
+
+NativeRegistry& NativeRegistry::global() {
+  static NativeRegistry registry;
+  return registry;
+}
+
+// -------------------------------------------------------------------------------------- construction
+
+Evaluator::Evaluator(Program& program, DiagnosticSink& sink) : program_(program), sink_(sink) {
+  natives::register_builtin_natives();
+}
+
+std::string Evaluator::root_name() const {
+  return graph_.root == kNoObject ? std::string() : graph_.at(graph_.root).name;
+}
+
+Type Evaluator::resolve_type_ref(DocumentInfo* doc, const TypeRef& ref) {
+  Type t;
+  TypeKind kind;
+  if (ref.name.parts.size() == 1 && is_primitive_name(ref.name.parts[0].text, kind)) {
+    t.kind = kind;
+  } else if (ModelInfo* model = program_.resolve_model_name(doc, ref.name)) {
+    if (program_.resolve(model)) t = Type::of_model(model);
+  }
+  t.is_array = ref.is_array && t.kind != TypeKind::Error;
+  return t;
+}
+
+Type Evaluator::resolve_type(DocumentInfo* doc, const TypeExpr& type) {
+  if (type.alternatives.empty()) return {};
+  Type result;
+  if (type.alternatives.size() == 1) {
+    result = resolve_type_ref(doc, type.alternatives[0]);
+  } else {
+    result.kind = TypeKind::Union;
+    for (const TypeRef& ref : type.alternatives) {
+      Type alt = resolve_type_ref(doc, ref);
+      if (alt.kind == TypeKind::Error) return {};
+      result.alternatives.push_back(std::move(alt));
+    }
+  }
+  if (!type.traits.empty() && result.kind == TypeKind::Model) {
+    std::vector<ModelInfo*> traits;
+    for (const QualifiedName& name : type.traits) {
+      ModelInfo* trait = program_.resolve_model_name(doc, name);
+      if (!trait || !program_.resolve(trait)) return {};
+      if (!trait->is_trait) {
+        sink_.report(DiagCode::TraitRestriction, name.range,
+                     "`" + trait->qualified + "` is a model, not a trait; only traits go after `with`");
+        return {};
+      }
+      traits.push_back(trait);
+    }
+    result.model = program_.make_trait_extension(result.model, std::move(traits));
+  }
+  return result;
+}
+
+std::vector<Evaluator::Level> Evaluator::levels_of(ObjectId id) const {
+  std::vector<Level> levels;
+  std::string rel;
+  for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) {
+    levels.push_back({cur, rel});
+    rel = rel.empty() ? graph_.at(cur).name : graph_.at(cur).name + "." + rel;
+  }
+  std::reverse(levels.begin(), levels.end());
+  return levels;
+}
+
+Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
+                                bool include_declarations) {
+  // Assignments anywhere beat declaration defaults; among them the level nearest the root, then the most
+  // derived model of that level's type.
+  for (int pass = 0; pass < (include_declarations ? 2 : 1); ++pass) {
+    for (uint32_t i = 0; i < levels.size(); ++i) {
+      const Object& level = graph_.at(levels[i].object);
+      for (ModelInfo* model : level.type->linearization) {
+        auto it = model->by_parent.find(levels[i].rel);
+        if (it == model->by_parent.end()) continue;
+        for (uint32_t index : it->second) {
+          const Entry& e = model->entries[index];
+          if (e.path.back() != slot) continue;
+          const bool match = pass == 0 ? e.kind == kind
+                                       : (e.kind == Entry::Kind::Declare && e.value.has_value());
+          if (match) return Binding{&e, model, levels[i].object, i};
+        }
+      }
+    }
+  }
+  return {};
+}
+
+bool Evaluator::touched_below(const std::vector<Level>& levels, std::string_view slot) const {
+  for (const Level& level : levels) {
+    const std::string key = join_key(level.rel, slot);
+    for (ModelInfo* model : graph_.at(level.object).type->linearization) {
+      if (model->assigned_prefixes.count(key)) return true;
+    }
+  }
+  return false;
+}
+
+ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name) {
+  const ObjectId id = static_cast<ObjectId>(graph_.objects.size());
+  Object& obj = graph_.objects.emplace_back();
+  obj.type = type;
+  obj.owner = owner;
+  obj.name = std::move(name);
+  obj.depth = owner == kNoObject ? 0 : graph_.at(owner).depth + 1;
+  build_slots(id);
+  return id;
+}
+
+void Evaluator::build_slots(ObjectId id) {
+  std::vector<Level> levels = levels_of(id);
+  // `with` lines in a nested block add traits to this one instance.
+  std::vector<ModelInfo*> extra_traits;
+  for (size_t i = 0; i + 1 < levels.size(); ++i) {
+    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
+      auto it = model->by_parent.find(levels[i].rel);
+      if (it == model->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        const Entry& e = model->entries[index];
+        if (e.kind != Entry::Kind::WithTrait) continue;
+        ModelInfo* trait = program_.resolve_model_name(model->doc, e.member->path);
+        if (trait && program_.resolve(trait) && trait->is_trait) extra_traits.push_back(trait);
+      }
+    }
+  }
+  if (!extra_traits.empty()) {
+    graph_.at(id).type = program_.make_trait_extension(graph_.at(id).type, std::move(extra_traits));
+  }
+  Object& obj = graph_.at(id);
+  auto add_slot = [&](const Entry& e, ModelInfo* model) {
+    const std::string_view name = e.path.back();
+    if (obj.index.count(name)) {
+      sink_.report(DiagCode::DuplicateAttribute, e.member->path.range,
+                   "Duplicate attribute name " + std::string(name) + " in " + obj.type->qualified);
+      return;
+    }
+    Slot slot;
+    slot.name = name;
+    slot.declaration = &e;
+    slot.declared_in = model;
+    slot.optional = e.member->is_optional;
+    obj.index.emplace(name, static_cast<uint32_t>(obj.slots.size()));
+    obj.slots.push_back(std::move(slot));
+  };
+  // Declaration order: the root-most base first, then traits, then the model itself.
+  const auto& lin = obj.type->linearization;
+  for (auto it = lin.rbegin(); it != lin.rend(); ++it) {
+    auto found = (*it)->by_parent.find("");
+    if (found == (*it)->by_parent.end()) continue;
+    for (uint32_t index : found->second) {
+      const Entry& e = (*it)->entries[index];
+      if (e.kind == Entry::Kind::Declare) add_slot(e, *it);
+    }
+  }
+  // Attributes added by the nested blocks of owners.
+  for (size_t i = 0; i + 1 < levels.size(); ++i) {
+    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
+      auto it = model->by_parent.find(levels[i].rel);
+      if (it == model->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        if (model->entries[index].kind == Entry::Kind::Declare) add_slot(model->entries[index], model);
+      }
+    }
+  }
+  // Entries aimed at attributes this instance does not have.
+  for (const Level& level : levels) {
+    for (ModelInfo* model : graph_.at(level.object).type->linearization) {
+      auto it = model->by_parent.find(level.rel);
+      if (it == model->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        const Entry& e = model->entries[index];
+        if (e.kind == Entry::Kind::Annotation || e.kind == Entry::Kind::WithTrait) continue;
+        if (obj.index.count(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
+        std::vector<std::string> names;
+        for (const Slot& s : obj.slots) names.emplace_back(s.name);
+        std::string message = "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
+        std::string near = Program::suggestion(e.path.back(), names);
+        if (!near.empty()) message += "; did you mean `" + near + "`?";
+        const QualifiedName& path = e.member->path;
+        sink_.report(DiagCode::UnknownAttribute, path.parts.empty() ? e.member->range : path.parts.back().range,
+                     message);
+      }
+    }
+  }
+  // Types, `becomes`, bindings and annotations.
+  for (Slot& slot : obj.slots) {
+    const Entry& decl = *slot.declaration;
+    slot.declared_type = resolve_type(slot.declared_in->doc, decl.member->type);
+    slot.type = slot.declared_type;
+    Binding becomes = find_binding(levels, slot.name, Entry::Kind::Becomes, false);
+    if (becomes.entry) {
+      slot.becomes = becomes;
+      Type narrowed = resolve_type(becomes.model->doc, becomes.entry->member->type);
+      const Type& old = slot.declared_type;
+      bool compatible = false;
+      if (old.is_primitive() && old.kind != TypeKind::Error) {
+        sink_.report(DiagCode::IncompatibleBecomes, becomes.entry->member->path.range,
+                     "Cannot specialise primitive attribute " + std::string(slot.name));
+        narrowed = {};
+      } else if (narrowed.kind == TypeKind::Model && old.kind == TypeKind::Model) {
+        compatible = narrowed.is_array == old.is_array && narrowed.model->is_subtype_of(old.model);
+      } else if (narrowed.kind == TypeKind::Model && old.kind == TypeKind::Union) {
+        for (const Type& alt : old.alternatives) {
+          compatible = compatible || (alt.kind == TypeKind::Model && narrowed.model->is_subtype_of(alt.model));
+        }
+      }
+      if (!compatible && narrowed.kind != TypeKind::Error && old.kind != TypeKind::Error) {
+        sink_.report(DiagCode::IncompatibleBecomes, becomes.entry->member->type.range,
+                     "Type " + narrowed.describe() + " is not compatible with " + old.describe());
+        narrowed = {};
+      }
+      slot.type = narrowed;
+    }
+    slot.binding = find_binding(levels, slot.name, Entry::Kind::Value, true);
+    slot.explicit_value = (slot.binding.entry && !slot.binding.entry->from_declaration &&
+                           slot.binding.entry->kind == Entry::Kind::Value) ||
+                          touched_below(levels, slot.name);
+    for (auto level = levels.rbegin(); level != levels.rend(); ++level) {
+      const std::string key = join_key(level->rel, slot.name);
+      const auto& chain = graph_.at(level->object).type->linearization;
+      for (auto m = chain.rbegin(); m != chain.rend(); ++m) {
+        auto it = (*m)->by_parent.find(key);
+        if (it == (*m)->by_parent.end()) continue;
+        for (uint32_t index : it->second) {
+          const Entry& e = (*m)->entries[index];
+          if (e.kind == Entry::Kind::Annotation) {
+            slot.annotations[std::string(e.path.back())] = {*e.value, &(*m)->doc->doc};
+          }
+        }
+      }
+    }
+  }
+}
+
+ObjectId Evaluator::instantiate_root(ModelInfo* model) {
+  if (!program_.resolve(model)) return kNoObject;
+  if (model->is_trait) {
+    sink_.report(DiagCode::CannotInstantiateTrait, model->decl->name.range, "Cannot instantiate trait " + model->name);
+    return kNoObject;
+  }
+  graph_.root = new_object(model, kNoObject, model->name);
+  return graph_.root;
+}
+
+ObjectId Evaluator::make_free_object(ModelInfo* model) { return new_object(model, kNoObject, model->name); }
+
+void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
+  Object& obj = graph_.at(object);
+  auto it = obj.index.find(name);
+  if (it == obj.index.end()) return;
+  Slot& slot = obj.slots[it->second];
+  slot.value = std::move(value);
+  slot.state = Slot::State::Done;
+  slot.preset = true;
+  slot.explicit_value = true;
+  slot.binding = {};
+  slot.owns = slot.value.kind == Value::Kind::Object && graph_.at(slot.value.object).owner == kNoObject;
+  if (slot.owns) {
+    Object& child = graph_.at(slot.value.object);
+    child.owner = object;
+    child.name = std::string(name);
+    child.depth = obj.depth + 1;
+  }
+}
+
+void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, uint32_t level) {
+  {
+    Object& obj = graph_.at(child);
+    obj.owner = owner;
+    obj.name = name;
+    obj.depth = graph_.at(owner).depth + 1;
+  }
+  // The value came with its fields set at `level`; assignments to its parts from that level or nearer the
+  // root still win (`position: {0, 0, 1}` in a body, `body.position.z: 2` in its owner).
+  std::vector<Level> levels = levels_of(child);
+  Object& obj = graph_.at(child);
+  for (uint32_t i = 0; i < obj.slots.size(); ++i) {
+    Slot& slot = obj.slots[i];
+    Binding assigned = find_binding(levels, slot.name, Entry::Kind::Value, false);
+    if (slot.preset) {
+      if (assigned.entry && assigned.level <= level) {
+        slot.binding = assigned;
+        slot.state = Slot::State::Pending;
+        slot.preset = false;
+        slot.owns = false;
+      } else if (slot.owns) {
+        adopt(slot.value.object, child, std::string(slot.name), level);
+      }
+    } else if (slot.state == Slot::State::Pending) {
+      slot.binding = find_binding(levels, slot.name, Entry::Kind::Value, true);
+    }
+    slot.explicit_value = slot.explicit_value || assigned.entry != nullptr;
+  }
+}
+
+ObjectId Evaluator::singleton(ModelInfo* model) {
+  if (auto it = singletons_.find(model); it != singletons_.end()) return it->second;
+  ObjectId id = new_object(model, kNoObject, model->qualified);
+  graph_.at(id).is_const_singleton = true;
+  singletons_[model] = id;
+  return id;
+}
+
+std::string Evaluator::slot_path(ObjectId id, std::string_view slot) const {
+  std::string base = graph_.path(id);
+  const Object& top = [&]() -> const Object& {
+    ObjectId cur = id;
+    while (graph_.at(cur).owner != kNoObject) cur = graph_.at(cur).owner;
+    return graph_.at(cur);
+  }();
+  std::string prefix = &top == &graph_.at(graph_.root) ? root_name() : "";
+  std::string out = prefix;
+  if (!base.empty()) out += (out.empty() ? "" : ".") + base;
+  out += (out.empty() ? "" : ".") + std::string(slot);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------- evaluation
+
+const Value& Evaluator::value(ObjectId object, uint32_t slot) {
+  if (graph_.at(object).slots[slot].state != Slot::State::Done) evaluate_slot(object, slot);
+  return graph_.at(object).slots[slot].value;
+}
+
+const Value* Evaluator::value(ObjectId object, std::string_view slot) {
+  auto it = graph_.at(object).index.find(slot);
+  return it == graph_.at(object).index.end() ? nullptr : &value(object, it->second);
+}
+
+void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
+  Slot* slot = &graph_.at(id).slots[slot_index];
+  if (slot->state == Slot::State::Done) return;
+  const SourceRange where = slot->binding.entry ? slot->binding.entry->member->range
+                                                : slot->declaration->member->range;
+  if (slot->state == Slot::State::Evaluating) {
+    sink_.report(DiagCode::CyclicDependency, where, "Cyclic dependency detected at " + slot_path(id, slot->name));
+    slot->value = Value::error();
+    slot->state = Slot::State::Done;
+    return;
+  }
+  if (eval_depth_ >= kMaxEvalDepth) {
+    sink_.report(DiagCode::EvaluationTooDeep, where,
+                 "evaluating " + slot_path(id, slot->name) + " needs a chain of more than " +
+                     std::to_string(kMaxEvalDepth) + " dependent attributes");
+    slot->value = Value::error();
+    slot->state = Slot::State::Done;
+    return;
+  }
+  slot->state = Slot::State::Evaluating;
+  ++eval_depth_;
+  const std::vector<Level> levels = levels_of(id);
+  Value result;
+  bool owns = false;
+  const Type type = slot->type;
+  if (type.kind == TypeKind::Error) {
+    result = Value::error();
+  } else if (!slot->binding.entry) {
+    if (type.is_array) {
+      result = Value::of_array({});  // an array nobody assigned is empty
+    } else if (type.kind == TypeKind::Model) {
+      result = owned_default(id, *slot);
+      slot = &graph_.at(id).slots[slot_index];
+      owns = result.kind == Value::Kind::Object && graph_.at(result.object).owner == id;
+    } else if (!slot->optional) {
+      sink_.report(DiagCode::MissingAssignment, slot->declaration->member->range,
+                   "Missing assignment " + slot_path(id, slot->name) + ", owning model is not complete");
+      result = Value::error();
+    }
+  } else {
+    const Binding binding = slot->binding;
+    Scope scope{binding.model->doc, binding.model, binding.self};
+    const ExprId expr = *binding.entry->value;
+    const bool path = is_path_expression(binding.model->doc->doc, expr);
+    Value v = eval(expr, scope, &type);
+    slot = &graph_.at(id).slots[slot_index];
+    if (v.kind == Value::Kind::Object && graph_.at(v.object).owner == kNoObject &&
+        !graph_.at(v.object).is_const_singleton && !path) {
+      adopt(v.object, id, std::string(slot->name), binding.level);
+      slot = &graph_.at(id).slots[slot_index];
+      owns = true;
+    }
+    result = convert(std::move(v), type, binding.model->doc->doc.expr(expr).range, slot_path(id, slot->name));
+  }
+  slot = &graph_.at(id).slots[slot_index];
+  // Assignments to parts of a reference or of a primitive have nowhere to go.
+  if (!owns && !result.is_error()) {
+    for (const Level& level : levels) {
+      const std::string key = join_key(level.rel, slot->name);
+      for (ModelInfo* model : graph_.at(level.object).type->linearization) {
+        auto it = model->prefixes.find(key);
+        if (it == model->prefixes.end()) continue;
+        const Entry& e = model->entries[it->second];
+        if (e.kind == Entry::Kind::Annotation) continue;
+        if (result.kind == Value::Kind::Object && graph_.at(result.object).is_const_singleton) {
+          sink_.report(DiagCode::ConstAssignment, e.member->range,
+                       "Cannot assign to attribute of const model " + graph_.at(result.object).type->qualified);
+        } else if (result.kind == Value::Kind::Object) {
+          sink_.report(DiagCode::AssignThroughReference, e.member->range,
+                       "Cannot assign through reference " + std::string(slot->name));
+        } else {
+          sink_.report(DiagCode::UnknownAttribute, e.member->range,
+                       "`" + std::string(slot->name) + "` is " + type.describe() + " and has no attributes");
+        }
+        result = Value::error();
+        break;
+      }
+      if (result.is_error()) break;
+    }
+  }
+  slot->value = std::move(result);
+  slot->owns = owns;
+  slot->state = Slot::State::Done;
+  --eval_depth_;
+}
+
+Value Evaluator::owned_default(ObjectId id, Slot& slot) {
+  ModelInfo* model = slot.type.model;
+  if (model->is_trait) {
+    sink_.report(DiagCode::CannotInstantiateTrait, slot.declaration->member->range,
+                 "Cannot instantiate trait " + model->qualified + " for " + slot_path(id, slot.name) +
+                     "; assign a reference to an instance that includes it");
+    return Value::error();
+  }
+  if (model->is_const) return Value::of_object(singleton(model));  // an alias of the singleton
+  if (graph_.at(id).depth + 1 > kMaxInstanceDepth) {
+    sink_.report(DiagCode::EvaluationTooDeep, slot.declaration->member->range,
+                 "the instance tree is deeper than " + std::to_string(kMaxInstanceDepth) +
+                     " levels at " + slot_path(id, slot.name) + "; does " + model->qualified + " contain itself?");
+    return Value::error();
+  }
+  const std::string name(slot.name);
+  return Value::of_object(new_object(model, id, name));
+}
+
+Value Evaluator::global_value(GlobalInfo* global) {
+  auto& [state, value] = globals_[global];
+  if (state == 2) return value;
+  if (state == 1) {
+    sink_.report(DiagCode::CyclicDependency, global->decl->range, "Cyclic dependency detected at " + global->qualified);
+    state = 2;
+    value = Value::error();
+    return value;
+  }
+  state = 1;
+  const Type type = resolve_type(global->doc, global->decl->type);
+  Scope scope{global->doc, nullptr, kNoObject};
+  Value v = eval(*global->decl->value, scope, &type);
+  Value converted = convert(std::move(v), type, global->doc->doc.expr(*global->decl->value).range, global->qualified);
+  auto& entry = globals_[global];
+  entry.first = 2;
+  entry.second = std::move(converted);
+  return entry.second;
+}
+
+void Evaluator::evaluate_all(ObjectId root) {
+  std::vector<ObjectId> todo{root};
+  while (!todo.empty()) {
+    ObjectId id = todo.back();
+    todo.pop_back();
+    for (uint32_t i = 0; i < graph_.at(id).slots.size(); ++i) {
+      const Value& v = value(id, i);
+      const Slot& slot = graph_.at(id).slots[i];
+      if (slot.owns && v.kind == Value::Kind::Object) todo.push_back(v.object);
+    }
+  }
+}
+
+bool Evaluator::is_path_expression(const Document& doc, ExprId expr) {
+  const Expr* e = &doc.expr(expr);
+  while (e->kind == ExprKind::Member) e = &doc.expr(e->operands[0]);
+  return e->kind == ExprKind::Name || e->kind == ExprKind::This;
+}
+
+Type Evaluator::type_of(const Value& v) const {
+  switch (v.kind) {
+    case Value::Kind::Int: return Type::primitive(TypeKind::Int);
+    case Value::Kind::Real: return Type::primitive(TypeKind::Real);
+    case Value::Kind::Bool: return Type::primitive(TypeKind::Bool);
+    case Value::Kind::String: return Type::primitive(TypeKind::String);
+    case Value::Kind::Object: return Type::of_model(graph_.at(v.object).type);
+    default: return {};
+  }
+}
+
+bool Evaluator::assignable(const Value& v, const Type& target) const {
+  if (v.is_error() || target.kind == TypeKind::Error) return true;
+  if (target.is_array) {
+    if (v.kind != Value::Kind::Array) return false;
+    const Type element = target.element();
+    for (const Value& item : v.array) {
+      if (!assignable(item, element)) return false;
+    }
+    return true;
+  }
+  switch (target.kind) {
+    case TypeKind::Real: return v.is_number();
+    case TypeKind::Int: return v.kind == Value::Kind::Int || (v.kind == Value::Kind::Real && std::trunc(v.real_value) == v.real_value);
+    case TypeKind::Bool: return v.kind == Value::Kind::Bool;
+    case TypeKind::String: return v.kind == Value::Kind::String;
+    case TypeKind::Model: return v.kind == Value::Kind::Object && graph_.at(v.object).type->is_subtype_of(target.model);
+    case TypeKind::Union:
+      for (const Type& alt : target.alternatives) {
+        if (assignable(v, alt)) return true;
+      }
+      return false;
+    case TypeKind::Error: return true;
+  }
+  return false;
+}
+
+Value Evaluator::convert(Value v, const Type& target, SourceRange where, const std::string& what) {
+  if (v.is_error() || target.kind == TypeKind::Error) return v;
+  if (v.kind == Value::Kind::Unset) return v;
+  if (target.is_array && v.kind == Value::Kind::Array) {
+    const Type element = target.element();
+    for (Value& item : v.array) {
+      item = convert(std::move(item), element, where, what);
+      if (item.is_error()) return Value::error();
+    }
+    return v;
+  }
+  if (!target.is_array && target.kind == TypeKind::Int && v.kind == Value::Kind::Real) {
+    if (std::trunc(v.real_value) != v.real_value || std::abs(v.real_value) > 9.2e18) {
+      sink_.report(DiagCode::TypeMismatch, where,
+                   "Cannot convert Real value " + format_real(v.real_value) + " to Int for " + what);
+      return Value::error();
+    }
+    return Value::of_int(static_cast<int64_t>(v.real_value));
+  }
+  if (!assignable(v, target)) {
+    sink_.report(DiagCode::TypeMismatch, where,
+                 "Type mismatch: expected " + target.describe() + ", got " + describe_value_type(v, graph_) + " for " +
+                     what);
+    return Value::error();
+  }
+  if (!target.is_array && target.kind == TypeKind::Real && v.kind == Value::Kind::Int) {
+    return Value::of_real(static_cast<double>(v.int_value));
+  }
+  return v;
+}
+
+Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
+  const Document& doc = scope.doc->doc;
+  const Expr& e = doc.expr(id);
+  Entity entity;
+  if (e.kind == ExprKind::Name) {
+    if (scope.self != kNoObject) {
+      auto it = graph_.at(scope.self).index.find(e.text);
+      if (it != graph_.at(scope.self).index.end()) {
+        entity.value = value(scope.self, it->second);
+        if (entity.value.kind == Value::Kind::Unset) {
+          sink_.report(DiagCode::UnsetAttribute, e.range,
+                       "Attribute " + slot_path(scope.self, e.text) + " is not set");
+          entity.value = Value::error();
+        }
+        return entity;
+      }
+    }
+    std::vector<std::string> members;
+    if (scope.self != kNoObject) {
+      for (const Slot& s : graph_.at(scope.self).slots) members.emplace_back(s.name);
+    }
+    Symbol symbol = program_.lookup(scope.doc, e.text, e.range, true, &members);
+    if (!symbol) {
+      entity.value = Value::error();
+      return entity;
+    }
+    if (symbol.model) {
+      entity.kind = Entity::Kind::Model;
+      entity.model = symbol.model;
+    } else if (symbol.global) {
+      entity.value = global_value(symbol.global);
+    } else {
+      entity.kind = Entity::Kind::Namespace;
+      entity.ns = symbol.ns;
+    }
+    return entity;
+  }
+  if (e.kind == ExprKind::This) {
+    if (scope.self == kNoObject) {
+      sink_.report(DiagCode::NotAValue, e.range, "`this` has no meaning in a global attribute");
+      entity.value = Value::error();
+    } else {
+      entity.value = Value::of_object(scope.self);
+    }
+    return entity;
+  }
+  if (e.kind == ExprKind::Member) {
+    Entity target = eval_entity(e.operands[0], scope);
+    switch (target.kind) {
+      case Entity::Kind::Value: entity.value = member_of(target.value, e.text, e.range); return entity;
+      case Entity::Kind::Model:
+        if (!program_.resolve(target.model)) {
+          entity.value = Value::error();
+        } else if (target.model->is_const) {
+          entity.value = member_of(Value::of_object(singleton(target.model)), e.text, e.range);
+        } else {
+          sink_.report(DiagCode::NotAValue, e.range,
+                       "`" + target.model->qualified + "." + std::string(e.text) + "`: " + target.model->qualified +
+                           " is a model; without an instance only its static methods and, for const models, its "
+                           "attributes can be used");
+          entity.value = Value::error();
+        }
+        return entity;
+      case Entity::Kind::Namespace: {
+        Symbol symbol = program_.lookup_in(target.ns, e.text);
+        if (!symbol) {
+          std::vector<std::string> candidates;
+          for (const auto& [n, s] : target.ns->symbols) candidates.push_back(n);
+          for (const auto& [n, c] : target.ns->children) candidates.push_back(n);
+          std::string message = "Unknown name " + target.ns->qualified + "." + std::string(e.text);
+          std::string near = Program::suggestion(e.text, candidates);
+          if (!near.empty()) message += "; did you mean `" + near + "`?";
+          sink_.report(DiagCode::UnknownName, e.range, message);
+          entity.value = Value::error();
+        } else if (symbol.model) {
+          entity.kind = Entity::Kind::Model;
+          entity.model = symbol.model;
+        } else if (symbol.global) {
+          entity.value = global_value(symbol.global);
+        } else {
+          entity.kind = Entity::Kind::Namespace;
+          entity.ns = symbol.ns;
+        }
+        return entity;
+      }
+    }
+  }
+  entity.value = eval(id, scope, nullptr);
+  return entity;
+}
+
+Value Evaluator::member_of(const Value& object, std::string_view name, SourceRange where) {
+  if (object.is_error()) return object;
+  if (object.kind != Value::Kind::Object) {
+    sink_.report(DiagCode::UnknownAttribute, where,
+                 "a " + describe_value_type(object, graph_) + " value has no attribute `" + std::string(name) + "`");
+    return Value::error();
+  }
+  const Object& obj = graph_.at(object.object);
+  auto it = obj.index.find(name);
+  if (it == obj.index.end()) {
+    std::vector<std::string> names;
+    for (const Slot& s : obj.slots) names.emplace_back(s.name);
+    std::string message = "Unknown attribute " + std::string(name) + " in " + obj.type->qualified;
+    std::string near = Program::suggestion(name, names);
+    if (!near.empty()) message += "; did you mean `" + near + "`?";
+    sink_.report(DiagCode::UnknownAttribute, where, message);
+    return Value::error();
+  }
+  const uint32_t index = it->second;
+  Value v = value(object.object, index);
+  if (v.kind == Value::Kind::Unset) {
+    sink_.report(DiagCode::UnsetAttribute, where, "Attribute " + slot_path(object.object, name) + " is not set");
+    return Value::error();
+  }
+  return v;
+}
+
+Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
+  const Document& doc = scope.doc->doc;
+  const Expr& e = doc.expr(id);
+  switch (e.kind) {
+    case ExprKind::Error: return Value::error();
+    case ExprKind::Int:
+      if (e.int_value) return Value::of_int(*e.int_value);
+      if (expected && expected->kind == TypeKind::Real && !expected->is_array) return Value::of_real(e.real_value);
+      sink_.report(DiagCode::TypeMismatch, e.range, "integer `" + std::string(e.text.substr(0, 24)) +
+                                                        "` does not fit in Int (64 bits); write it as a Real");
+      return Value::error();
+    case ExprKind::Real: return Value::of_real(e.real_value);
+    case ExprKind::Bool: return Value::of_bool(e.bool_value);
+    case ExprKind::String: return Value::of_string(e.string_value);
+    case ExprKind::PathString: {
+      namespace fs = std::filesystem;
+      fs::path p(e.string_value);
+      if (p.is_relative()) p = fs::path(program_.sources().file(doc.file).path()).parent_path() / p;
+      return Value::of_string(p.lexically_normal().generic_string());
+    }
+    case ExprKind::Name:
+    case ExprKind::This:
+    case ExprKind::Member: {
+      Entity entity = eval_entity(id, scope);
+      if (entity.kind == Entity::Kind::Value) return entity.value;
+      if (entity.kind == Entity::Kind::Model && entity.model->is_const && program_.resolve(entity.model)) {
+        return Value::of_object(singleton(entity.model));
+      }
+      sink_.report(DiagCode::NotAValue, e.range,
+                   entity.kind == Entity::Kind::Model
+                       ? "`" + entity.model->qualified + "` is a model, not a value (only const models are values)"
+                       : "`" + entity.ns->qualified + "` is a namespace, not a value");
+      return Value::error();
+    }
+    case ExprKind::Call: return eval_call(e, scope);
+    case ExprKind::Unary: return eval_unary(e, scope, expected);
+    case ExprKind::Binary: return eval_binary(e, scope, expected);
+    case ExprKind::Array: {
+      Type element;
+      const bool typed = expected && expected->is_array;
+      if (typed) element = expected->element();
+      std::vector<Value> items;
+      for (ExprId item : e.operands) {
+        Value v = eval(item, scope, typed ? &element : nullptr);
+        if (v.is_error()) return v;
+        items.push_back(std::move(v));
+      }
+      return Value::of_array(std::move(items));
+    }
+    case ExprKind::Initializer: return eval_initializer(e, scope, expected);
+  }
+  return Value::error();
+}
+
+Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type* expected) {
+  if (!expected || expected->kind != TypeKind::Model || expected->is_array) {
+    sink_.report(DiagCode::InitializerType, e.range,
+                 expected && expected->kind != TypeKind::Error
+                     ? "an initializer `{...}` cannot make a " + expected->describe()
+                     : "Cannot infer type of initializer");
+    return Value::error();
+  }
+  ModelInfo* model = expected->model;
+  if (model->is_trait || model->is_const) {
+    sink_.report(DiagCode::InitializerType, e.range, "an initializer cannot make a " + model->qualified);
+    return Value::error();
+  }
+  ObjectId object = make_free_object(model);
+  std::vector<uint32_t> fields;
+  for (uint32_t i = 0; i < graph_.at(object).slots.size(); ++i) {
+    const Slot& slot = graph_.at(object).slots[i];
+    if (slot.type.is_primitive() && !slot.type.is_array && slot.type.kind != TypeKind::Error) fields.push_back(i);
+  }
+  if (e.operands.size() != fields.size()) {
+    sink_.report(DiagCode::InitializerArity, e.range,
+                 "Initializer has " + std::to_string(e.operands.size()) + " values but " + model->qualified + " has " +
+                     std::to_string(fields.size()) + " fields");
+    return Value::error();
+  }
+  for (size_t i = 0; i < fields.size(); ++i) {
+    const Type field_type = graph_.at(object).slots[fields[i]].type;
+    Value v = eval(e.operands[i], scope, &field_type);
+    const std::string field_name(graph_.at(object).slots[fields[i]].name);
+    v = convert(std::move(v), field_type, scope.doc->doc.expr(e.operands[i]).range, model->qualified + "." + field_name);
+    if (v.is_error()) return v;
+    preset(object, field_name, std::move(v));
+  }
+  return Value::of_object(object);
+}
+
+Value Evaluator::eval_unary(const Expr& e, const Scope& scope, const Type* expected) {
+  Value v = eval(e.operands[0], scope, expected);
+  if (v.is_error()) return v;
+  if (v.kind == Value::Kind::Int) {
+    if (v.int_value == INT64_MIN) {
+      sink_.report(DiagCode::TypeMismatch, e.range, "Int overflow in negation");
+      return Value::error();
+    }
+    return Value::of_int(-v.int_value);
+  }
+  if (v.kind == Value::Kind::Real) return Value::of_real(-v.real_value);
+  return apply_operator('-', {v}, e.range, true);
+}
+
+Value Evaluator::eval_binary(const Expr& e, const Scope& scope, const Type* expected) {
+  const Document& doc = scope.doc->doc;
+  const bool lhs_init = doc.expr(e.operands[0]).kind == ExprKind::Initializer;
+  const bool rhs_init = doc.expr(e.operands[1]).kind == ExprKind::Initializer;
+  Value lhs, rhs;
+  if (lhs_init != rhs_init) {
+    // An initializer operand takes its type from the whole expression, when an operator exists for that type
+    // and the other operand (spec §10.8); else from the other operand.
+    const ExprId other_id = lhs_init ? e.operands[1] : e.operands[0];
+    Value other = eval(other_id, scope, nullptr);
+    if (other.is_error()) return other;
+    Type other_type = type_of(other);
+    Type init_type;
+    auto fits = [&](const Type& t) {
+      if (t.kind != TypeKind::Model || t.is_array) return false;
+      std::vector<Type> types = lhs_init ? std::vector<Type>{t, other_type} : std::vector<Type>{other_type, t};
+      return find_operator(e.op, types, nullptr) != nullptr;
+    };
+    if (expected && fits(*expected)) {
+      init_type = *expected;
+    } else if (fits(other_type)) {
+      init_type = other_type;
+    }
+    Value init = eval(lhs_init ? e.operands[0] : e.operands[1], scope, &init_type);
+    if (init.is_error()) return init;
+    lhs = lhs_init ? init : other;
+    rhs = lhs_init ? other : init;
+  } else {
+    lhs = eval(e.operands[0], scope, expected);
+    if (lhs.is_error()) return lhs;
+    rhs = eval(e.operands[1], scope, expected);
+    if (rhs.is_error()) return rhs;
+  }
+  if (lhs.is_number() && rhs.is_number()) {
+    if (lhs.kind == Value::Kind::Int && rhs.kind == Value::Kind::Int && e.op != '/') {
+      int64_t out = 0;
+      bool overflow = e.op == '+'   ? __builtin_add_overflow(lhs.int_value, rhs.int_value, &out)
+                      : e.op == '-' ? __builtin_sub_overflow(lhs.int_value, rhs.int_value, &out)
+                                    : __builtin_mul_overflow(lhs.int_value, rhs.int_value, &out);
+      if (overflow) {
+        sink_.report(DiagCode::TypeMismatch, e.range, "Int overflow; write the operands as Reals");
+        return Value::error();
+      }
+      return Value::of_int(out);
+    }
+    // Int / Int is Real (spec §10.5 proposal): 7 / 2 is 3.5.
+    const double a = lhs.as_real(), b = rhs.as_real();
+    switch (e.op) {
+      case '+': return Value::of_real(a + b);
+      case '-': return Value::of_real(a - b);
+      case '*': return Value::of_real(a * b);
+      default: return Value::of_real(a / b);
+    }
+  }
+  return apply_operator(e.op, {lhs, rhs}, e.range, true);
+}
+
+const OperatorInfo* Evaluator::find_operator(char op, const std::vector<Type>& operand_types,
+                                             std::vector<Type>* params_out) {
+  const OperatorInfo* loose = nullptr;
+  std::vector<Type> loose_params;
+  for (const OperatorInfo& info : program_.operators()) {
+    if (info.decl->op != op || info.decl->params.size() != operand_types.size()) continue;
+    std::vector<Type> params;
+    bool exact = true, compatible = true;
+    for (size_t i = 0; i < operand_types.size(); ++i) {
+      Type p = resolve_type_ref(info.doc, info.decl->params[i].type);
+      const Type& a = operand_types[i];
+      const bool same = p.kind == a.kind && p.is_array == a.is_array && p.model == a.model;
+      const bool fits = same || (p.kind == TypeKind::Real && a.kind == TypeKind::Int && !a.is_array) ||
+                        (p.kind == TypeKind::Model && a.kind == TypeKind::Model && !p.is_array && !a.is_array &&
+                         a.model->is_subtype_of(p.model));
+      exact = exact && same;
+      compatible = compatible && fits;
+      params.push_back(std::move(p));
+    }
+    if (exact) {
+      if (params_out) *params_out = params;
+      return &info;
+    }
+    if (compatible && !loose) {
+      loose = &info;
+      loose_params = params;
+    }
+  }
+  if (loose && params_out) *params_out = loose_params;
+  return loose;
+}
+
+Value Evaluator::apply_operator(char op, const std::vector<Value>& operands, SourceRange where, bool report) {
+  std::vector<Type> types;
+  for (const Value& v : operands) types.push_back(type_of(v));
+  std::vector<Type> params;
+  const OperatorInfo* info = find_operator(op, types, &params);
+  std::string signature;
+  for (size_t i = 0; i < types.size(); ++i) signature += (i ? " and " : "") + describe_value_type(operands[i], graph_);
+  if (!info) {
+    if (report) {
+      sink_.report(DiagCode::NoOperator, where, std::string("No operator ") + op + " for " + signature);
+    }
+    return Value::error();
+  }
+  std::string key = std::string("operator") + op + "(";
+  for (size_t i = 0; i < params.size(); ++i) key += (i ? "," : "") + params[i].describe();
+  key += ")";
+  const NativeFunction* fn = NativeRegistry::global().find(key);
+  if (!fn) {
+    sink_.report(DiagCode::NoImplementation, where, "No implementation for operator " + key.substr(8));
+    return Value::error();
+  }
+  std::vector<Value> args;
+  for (size_t i = 0; i < operands.size(); ++i) {
+    args.push_back(convert(operands[i], params[i], where, std::string("operand of ") + op));
+  }
+  NativeCall call(*this, where);
+  return (*fn)(call, args);
+}
+
+const MethodInfo* Evaluator::find_method(ModelInfo* model, std::string_view name, ModelInfo** owner) {
+  for (ModelInfo* m : model->linearization) {
+    for (const MethodInfo& method : m->methods) {
+      if (method.member->path.parts[0].text == name) {
+        *owner = m;
+        return &method;
+      }
+    }
+  }
+  return nullptr;
+}
+
+Value Evaluator::eval_call(const Expr& call, const Scope& scope) {
+  const Document& doc = scope.doc->doc;
+  const Expr& callee = doc.expr(call.operands[0]);
+  std::vector<ExprId> args(call.operands.begin() + 1, call.operands.end());
+  std::string_view name = callee.text;
+  ModelInfo* type = nullptr;
+  std::optional<Value> self;
+  bool on_instance = false;  // `value.f()`, as opposed to `Model.f()` or an unqualified `f()`
+  if (callee.kind == ExprKind::Name) {
+    if (scope.self == kNoObject) {
+      sink_.report(DiagCode::UnknownMethod, callee.range, "Unknown method " + std::string(name));
+      return Value::error();
+    }
+    self = Value::of_object(scope.self);
+    type = graph_.at(scope.self).type;
+  } else {
+    Entity target = eval_entity(callee.operands[0], scope);
+    if (target.kind == Entity::Kind::Model) {
+      if (!program_.resolve(target.model)) return Value::error();
+      type = target.model;
+    } else if (target.kind == Entity::Kind::Namespace) {
+      sink_.report(DiagCode::UnknownMethod, callee.range,
+                   "`" + target.ns->qualified + "." + std::string(name) + "` is not a method");
+      return Value::error();
+    } else {
+      if (target.value.is_error()) return target.value;
+      if (target.value.kind != Value::Kind::Object) {
+        sink_.report(DiagCode::UnknownMethod, callee.range,
+                     "a " + describe_value_type(target.value, graph_) + " value has no methods");
+        return Value::error();
+      }
+      self = target.value;
+      on_instance = true;
+      type = graph_.at(target.value.object).type;
+    }
+  }
+  ModelInfo* owner = nullptr;
+  const MethodInfo* method = find_method(type, name, &owner);
+  if (!method) {
+    std::vector<std::string> names;
+    for (ModelInfo* m : type->linearization) {
+      for (const MethodInfo& mi : m->methods) names.emplace_back(mi.member->path.parts[0].text);
+    }
+    std::string message = "Unknown method " + std::string(name) + " in " + type->qualified;
+    std::string near = Program::suggestion(name, names);
+    if (!near.empty()) message += "; did you mean `" + near + "`?";
+    sink_.report(DiagCode::UnknownMethod, callee.range, message);
+    return Value::error();
+  }
+  if (method->member->is_static && on_instance) {
+    sink_.report(DiagCode::StaticMismatch, call.range, "Static method " + std::string(name) + " called on instance");
+    return Value::error();
+  }
+  return call_method(owner, *method, method->member->is_static ? std::nullopt : self, std::move(args), scope,
+                     call.range);
+}
+
+Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::optional<Value> self,
+                             std::vector<ExprId> args, const Scope& scope, SourceRange where) {
+  const Member& m = *method.member;
+  const std::string name(m.path.parts[0].text);
+  const std::string qualified = owner->qualified + "." + name;
+  if (!m.is_static && !self) {
+    sink_.report(DiagCode::StaticMismatch, where, "Non-static method " + name + " called on type " + owner->qualified);
+    return Value::error();
+  }
+  if (!m.return_type) {
+    sink_.report(DiagCode::VoidMethodCall, where, "Method " + name + " has no return value and cannot be called");
+    return Value::error();
+  }
+  if (args.size() != m.params.size()) {
+    sink_.report(DiagCode::WrongArgumentCount, where,
+                 "Wrong number of arguments to " + name + ": expected " + std::to_string(m.params.size()) + ", got " +
+                     std::to_string(args.size()));
+    return Value::error();
+  }
+  std::vector<Value> values;
+  if (!m.is_static) values.push_back(*self);
+  for (size_t i = 0; i < args.size(); ++i) {
+    const Type param = resolve_type_ref(owner->doc, m.params[i].type);
+    Value v = eval(args[i], scope, &param);
+    v = convert(std::move(v), param, scope.doc->doc.expr(args[i]).range,
+                "argument `" + std::string(m.params[i].name.text) + "` of " + name);
+    if (v.is_error()) return v;
+    values.push_back(std::move(v));
+  }
+  const NativeFunction* fn = NativeRegistry::global().find(qualified);
+  if (!fn) {
+    sink_.report(DiagCode::NoImplementation, where, "No implementation for method " + qualified);
+    return Value::error();
+  }
+  NativeCall call(*this, where);
+  Value result = (*fn)(call, values);
+  const Type ret = resolve_type_ref(owner->doc, *m.return_type);
+  return convert(std::move(result), ret, where, "the result of " + qualified);
+}
+
+// ------------------------------------------------------------------------------------------- natives
+
+double NativeCall::real(const Value& v) { return v.as_real(); }
+
+std::vector<double> NativeCall::reals(const Value& array) {
+  std::vector<double> out;
+  for (const Value& v : array.array) out.push_back(v.as_real());
+  return out;
+}
+
+Value NativeCall::object(const Value& of, std::string_view attribute) {
+  const Value* v = evaluator_.value(of.object, attribute);
+  return v ? *v : Value::error();
+}
+
+std::vector<double> NativeCall::fields(const Value& object, std::initializer_list<std::string_view> names) {
+  std::vector<double> out;
+  for (std::string_view name : names) {
+    const Value* v = evaluator_.value(object.object, name);
+    out.push_back(v && v->is_number() ? v->as_real() : std::nan(""));
+  }
+  return out;
+}
+
+Value NativeCall::make(std::string_view model, std::initializer_list<std::pair<std::string_view, double>> fields) {
+  ModelInfo* info = evaluator_.program().builtin_model(model);
+  if (!info || !evaluator_.program().resolve(info)) return fail("the bundle model " + std::string(model) + " is missing");
+  ObjectId id = evaluator_.make_free_object(info);
+  for (const auto& [name, v] : fields) evaluator_.preset(id, name, Value::of_real(v));
+  return Value::of_object(id);
+}
+
+Value NativeCall::make_with(std::string_view model, std::initializer_list<std::pair<std::string_view, Value>> fields) {
+  ModelInfo* info = evaluator_.program().builtin_model(model);
+  if (!info || !evaluator_.program().resolve(info)) return fail("the bundle model " + std::string(model) + " is missing");
+  ObjectId id = evaluator_.make_free_object(info);
+  for (const auto& [name, v] : fields) evaluator_.preset(id, name, v);
+  return Value::of_object(id);
+}
+
+Value NativeCall::fail(const std::string& message) {
+  evaluator_.sink().report(DiagCode::NativeError, where_, message);
+  return Value::error();
+}
+
+// ----------------------------------------------------------------------------------------------- root
+
+ModelInfo* select_root_model(Program& program, DocumentInfo* doc, const std::string* name) {
+  const SourceFile& file = program.sources().file(doc->doc.file);
+  const SourceRange file_start{doc->doc.file, file.content_begin(), file.content_begin()};
+  if (name) {
+    auto it = doc->ns->symbols.find(*name);
+    const Decl* decl = nullptr;
+    for (const Decl& d : doc->doc.decls) {
+      if ((d.kind == DeclKind::Model || d.kind == DeclKind::Trait) && d.name.text == *name) decl = &d;
+    }
+    if (!decl || it == doc->ns->symbols.end() || !it->second.model) {
+      std::string models;
+      for (const Decl& d : doc->doc.decls) {
+        if (d.kind == DeclKind::Model) models += (models.empty() ? "" : ", ") + std::string(d.name.text);
+      }
+      program.sink().report(DiagCode::UnknownModel, file_start,
+                            "no model named `" + *name + "` in this file" +
+                                (models.empty() ? std::string() : "; its models are " + models));
+      return nullptr;
+    }
+    return it->second.model;
+  }
+  const Decl* last = doc->doc.last_model();
+  if (!last) {
+    program.sink().report(DiagCode::NoModel, file_start, "No model could be found");
+    return nullptr;
+  }
+  auto it = doc->ns->symbols.find(last->name.text);
+  return it == doc->ns->symbols.end() ? nullptr : it->second.model;
+}
+
+}  // namespace openplx::frontend

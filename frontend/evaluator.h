@@ -1,0 +1,149 @@
+// The evaluator: instantiates a root model into an ObjectGraph and computes attribute values lazily,
+// memoised, independent of declaration order (spec/openplx-language.md §16).
+//
+// Which expression binds an attribute (§16.2): among the instance's ancestors, the one closest to the root
+// that assigns it wins; within one instance's type chain, the most derived model; a declaration's default
+// comes last. `becomes` chooses the attribute's type by the same rule. Errors are reported to the sink
+// with the user's source line; a failed value is poisoned (Value::Kind::Error) and does not cascade.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "frontend/object_graph.h"
+#include "frontend/program.h"
+
+namespace openplx::frontend {
+
+class Evaluator;
+
+// What a native function sees: its arguments, and helpers to read and make Math values.
+class NativeCall {
+ public:
+  NativeCall(Evaluator& evaluator, SourceRange where) : evaluator_(evaluator), where_(where) {}
+  Evaluator& evaluator() { return evaluator_; }
+  SourceRange where() const { return where_; }
+  double real(const Value& v);
+  std::vector<double> reals(const Value& array);
+  // Reads the Real attributes `fields` of an object value (e.g. {"x","y","z"}).
+  std::vector<double> fields(const Value& object, std::initializer_list<std::string_view> names);
+  Value object(const Value& of, std::string_view attribute);
+  // A new free object of a bundle model (e.g. "Math.Vec3") with the given Real fields preset.
+  Value make(std::string_view model, std::initializer_list<std::pair<std::string_view, double>> fields);
+  Value make_with(std::string_view model, std::initializer_list<std::pair<std::string_view, Value>> fields);
+  Value fail(const std::string& message);  // reports at the call and returns an error value
+
+ private:
+  Evaluator& evaluator_;
+  SourceRange where_;
+};
+
+using NativeFunction = std::function<Value(NativeCall&, std::span<const Value>)>;
+
+// Natives by qualified name: "Math.Vec3.from_xyz" for methods (instance methods get `this` as argument 0),
+// "operator*(Math.Vec3,Real)" for operators.
+class NativeRegistry {
+ public:
+  static NativeRegistry& global();
+  void add(std::string name, NativeFunction fn) { functions_[std::move(name)] = std::move(fn); }
+  const NativeFunction* find(const std::string& name) const {
+    auto it = functions_.find(name);
+    return it == functions_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  std::unordered_map<std::string, NativeFunction> functions_;
+};
+
+class Evaluator {
+ public:
+  Evaluator(Program& program, DiagnosticSink& sink);
+
+  // Creates the root instance of `model` (errors: traits and non-models cannot be instantiated).
+  ObjectId instantiate_root(ModelInfo* model);
+  // Evaluates every attribute of the tree under `root`, reporting incomplete models.
+  void evaluate_all(ObjectId root);
+  // The value of one attribute (evaluated on first use).
+  const Value& value(ObjectId object, uint32_t slot);
+  const Value* value(ObjectId object, std::string_view slot);
+
+  ObjectGraph& graph() { return graph_; }
+  const ObjectGraph& graph() const { return graph_; }
+  Program& program() { return program_; }
+  DiagnosticSink& sink() { return sink_; }
+  std::string root_name() const;
+
+  // Used by natives.
+  ObjectId make_free_object(ModelInfo* model);
+  void preset(ObjectId object, std::string_view slot, Value value);
+  Type resolve_type(DocumentInfo* doc, const TypeExpr& type);
+  Type resolve_type_ref(DocumentInfo* doc, const TypeRef& ref);
+
+ private:
+  struct Scope {
+    DocumentInfo* doc = nullptr;
+    ModelInfo* home = nullptr;
+    ObjectId self = kNoObject;
+  };
+  struct Entity {
+    enum class Kind { Value, Model, Namespace } kind = Kind::Value;
+    Value value;
+    ModelInfo* model = nullptr;
+    Namespace* ns = nullptr;
+  };
+  struct Level {
+    ObjectId object;
+    std::string rel;  // path from this ancestor to the object being built, joined with '.'
+  };
+
+  ObjectId new_object(ModelInfo* type, ObjectId owner, std::string name);
+  void build_slots(ObjectId id);
+  std::vector<Level> levels_of(ObjectId id) const;
+  Binding find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
+                       bool include_declarations);
+  bool touched_below(const std::vector<Level>& levels, std::string_view slot) const;
+  void evaluate_slot(ObjectId id, uint32_t slot_index);
+  Value owned_default(ObjectId id, Slot& slot);
+  void adopt(ObjectId child, ObjectId owner, const std::string& name, uint32_t level);
+  ObjectId singleton(ModelInfo* model);
+  Value global_value(GlobalInfo* global);
+  std::string slot_path(ObjectId id, std::string_view slot) const;
+
+  Value eval(ExprId expr, const Scope& scope, const Type* expected);
+  Entity eval_entity(ExprId expr, const Scope& scope);
+  Value member_of(const Value& object, std::string_view name, SourceRange where);
+  Value eval_call(const Expr& call, const Scope& scope);
+  Value call_method(ModelInfo* owner_type, const MethodInfo& method, std::optional<Value> self,
+                    std::vector<ExprId> args, const Scope& scope, SourceRange where);
+  Value eval_binary(const Expr& e, const Scope& scope, const Type* expected);
+  Value eval_unary(const Expr& e, const Scope& scope, const Type* expected);
+  Value eval_initializer(const Expr& e, const Scope& scope, const Type* expected);
+  Value apply_operator(char op, const std::vector<Value>& operands, SourceRange where, bool report);
+  const OperatorInfo* find_operator(char op, const std::vector<Type>& operand_types, std::vector<Type>* params);
+  Type type_of(const Value& v) const;
+  const MethodInfo* find_method(ModelInfo* model, std::string_view name, ModelInfo** owner);
+
+  // Checks and converts `v` for a slot or parameter of type `target`; reports at `where`.
+  Value convert(Value v, const Type& target, SourceRange where, const std::string& what);
+  bool assignable(const Value& v, const Type& target) const;
+  static bool is_path_expression(const Document& doc, ExprId expr);
+
+  Program& program_;
+  DiagnosticSink& sink_;
+  ObjectGraph graph_;
+  std::unordered_map<ModelInfo*, ObjectId> singletons_;
+  std::unordered_map<GlobalInfo*, std::pair<int, Value>> globals_;  // state 1 = evaluating, 2 = done
+  std::unordered_set<const Entry*> reported_unknown_;  // one message per wrong entry, however many instances
+  int eval_depth_ = 0;
+};
+
+// The root model of a loaded file: `name` if given, else the last model declared. Reports
+// `No model could be found` / unknown model.
+ModelInfo* select_root_model(Program& program, DocumentInfo* doc, const std::string* name);
+
+}  // namespace openplx::frontend

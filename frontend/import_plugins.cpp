@@ -1,0 +1,35 @@
+#include "frontend/import_plugins.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace openplx::frontend {
+
+std::optional<std::string> import_plugin_source(const std::string& path, const std::string& model_name,
+                                                std::string& error) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  // Path strings take no escapes, so a path with a quote cannot be written back as one.
+  if (path.find('"') != std::string::npos || path.find('\n') != std::string::npos) {
+    error = "cannot import a file whose path contains a quote or a newline: " + path;
+    return std::nullopt;
+  }
+  if (extension == ".obj" || extension == ".stl") {
+    // A mesh: its file and scale, as the geometry bundles will read them.
+    return "`" + model_name + "`:\n    path is String: @\"" + path + "\"\n    scale is Real: 1.0\n";
+  }
+  if (extension == ".agx") {
+    error = "AGX archives (.agx) cannot be imported: they are a binary AGX Dynamics format with no OpenPLX or MuJoCo "
+            "equivalent; export the model to OpenPLX or URDF instead";
+    return std::nullopt;
+  }
+  if (extension == ".urdf") {
+    error = "URDF import is not available yet (it arrives with the URDF issue): " + path;
+    return std::nullopt;
+  }
+  error = "No plugin registered for extension '" + extension + "'";
+  return std::nullopt;
+}
+
+}  // namespace openplx::frontend

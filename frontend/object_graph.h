@@ -1,0 +1,75 @@
+// The evaluated instance tree: the IR every later pass reads (SNAP, the MJCF emitter, the runtime).
+//
+// Objects are model instances held by index. Each attribute is a Slot with its effective type, the entry
+// that bound it, whether that binding is an explicit assignment (SNAP needs "undefined local transform"),
+// and its value once evaluated. An owned model-typed attribute holds a child object; a reference holds the
+// id of an object owned elsewhere (or of a const singleton).
+#pragma once
+
+#include <deque>
+#include <map>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "frontend/program.h"
+#include "frontend/value.h"
+
+namespace openplx::frontend {
+
+struct Binding {
+  const Entry* entry = nullptr;
+  ModelInfo* model = nullptr;      // the model whose text holds the entry (name lookup, `this` type)
+  ObjectId self = kNoObject;       // the instance `this` means when evaluating it
+  uint32_t level = UINT32_MAX;     // ancestor depth it came from: 0 = root; lower wins
+};
+
+struct AnnotationValue {
+  ExprId expr = 0;
+  const Document* doc = nullptr;
+};
+
+struct Slot {
+  std::string_view name;
+  const Entry* declaration = nullptr;
+  ModelInfo* declared_in = nullptr;
+  Type declared_type;
+  Type type;  // after `becomes`
+  bool optional = false;
+  Binding binding;           // the value's source; entry == nullptr when nothing binds it
+  Binding becomes;           // the `becomes` that set `type`, if any
+  bool explicit_value = false;  // assigned (not a declaration default), itself or any part of it
+  enum class State : uint8_t { Pending, Evaluating, Done } state = State::Pending;
+  bool owns = false;    // value is an object owned by this slot
+  bool preset = false;  // value given directly (initializer or native result), not by an entry
+  Value value;
+  std::map<std::string, AnnotationValue, std::less<>> annotations;
+};
+
+struct Object {
+  ModelInfo* type = nullptr;
+  ObjectId owner = kNoObject;
+  std::string name;  // attribute name in the owner; the model name for roots and const singletons
+  uint32_t depth = 0;
+  bool is_const_singleton = false;
+  std::vector<Slot> slots;
+  std::unordered_map<std::string_view, uint32_t> index;
+
+  const Slot* find(std::string_view slot) const {
+    auto it = index.find(slot);
+    return it == index.end() ? nullptr : &slots[it->second];
+  }
+};
+
+struct ObjectGraph {
+  std::deque<Object> objects;  // stable references: evaluation creates objects while others are in use
+  ObjectId root = kNoObject;
+
+  Object& at(ObjectId id) { return objects[id]; }
+  const Object& at(ObjectId id) const { return objects[id]; }
+  // Dotted path from the root (not including the root's name); const singletons by their model name.
+  std::string path(ObjectId id) const;
+};
+
+}  // namespace openplx::frontend

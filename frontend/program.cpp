@@ -1,0 +1,637 @@
+#include "frontend/program.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "frontend/import_plugins.h"
+#include "frontend/parser.h"
+
+namespace openplx::frontend {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string join(const std::vector<std::string_view>& parts, size_t count) {
+  std::string out;
+  for (size_t i = 0; i < count; ++i) {
+    if (i) out += '.';
+    out += parts[i];
+  }
+  return out;
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+bool ModelInfo::is_subtype_of(const ModelInfo* other) const {
+  if (this == other) return true;
+  return std::find(linearization.begin(), linearization.end(), other) != linearization.end();
+}
+
+Program::Program(SourceManager& sources, DiagnosticSink& sink) : sources_(sources), sink_(sink) {}
+Program::~Program() = default;
+
+Namespace* Program::new_namespace(std::string name, Namespace* parent, std::string dir,
+                                  const BundleConfig* bundle) {
+  Namespace& ns = namespaces_.emplace_back();
+  ns.qualified = parent && !parent->qualified.empty() ? parent->qualified + "." + name : name;
+  ns.name = std::move(name);
+  ns.parent = parent;
+  ns.dir = std::move(dir);
+  ns.bundle = bundle;
+  ns.loaded = ns.dir.empty();
+  return &ns;
+}
+
+void Program::set_bundles(std::vector<BundleConfig> bundles) {
+  for (BundleConfig& bundle : bundles) add_bundle(std::move(bundle));
+}
+
+const BundleConfig* Program::add_bundle(BundleConfig bundle) {
+  if (Namespace* existing = bundle_root(bundle.name)) return existing->bundle;
+  const BundleConfig& stored = bundles_.emplace_back(std::move(bundle));
+  bundle_roots_[stored.name] = new_namespace(stored.name, nullptr, stored.dir, &stored);
+  return &stored;
+}
+
+Namespace* Program::bundle_root(std::string_view name) {
+  auto it = bundle_roots_.find(name);
+  return it == bundle_roots_.end() ? nullptr : it->second;
+}
+
+void Program::load_namespace(Namespace* ns) {
+  if (ns->loaded) return;
+  ns->loaded = true;
+  std::error_code ec;
+  std::vector<fs::path> files;
+  std::vector<fs::path> dirs;
+  for (const auto& entry : fs::directory_iterator(ns->dir, ec)) {
+    if (entry.is_directory(ec)) {
+      dirs.push_back(entry.path());
+    } else if (entry.path().extension() == ".openplx") {
+      files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::sort(dirs.begin(), dirs.end());
+  for (const fs::path& dir : dirs) {
+    std::string name = dir.filename().string();
+    if (!ns->children.count(name)) {
+      ns->children[name] = new_namespace(name, ns, dir.lexically_normal().generic_string(), ns->bundle);
+    }
+  }
+  for (const fs::path& file : files) {
+    // config.openplx describes the bundle and adds nothing to its namespace.
+    if (!ns->parent && file.filename() == "config.openplx") continue;
+    const std::string path = file.lexically_normal().generic_string();
+    if (loaded_files_.count(path)) continue;
+    std::string error;
+    std::optional<FileId> id = sources_.load(path, error);
+    if (!id) {
+      sink_.report(DiagCode::IoError, {}, path + ": " + error);
+      continue;
+    }
+    load_document(*id, ns, ns->bundle);
+  }
+}
+
+DocumentInfo* Program::load_document(FileId file, Namespace* ns, const BundleConfig* bundle) {
+  DocumentInfo& info = documents_.emplace_back();
+  loaded_files_[sources_.file(file).path()] = &info;
+  info.doc = parse_file(sources_, file, sink_);
+  info.ns = ns;
+  info.bundle = bundle;
+  declare(&info, ns);
+  process_imports(&info);
+  return &info;
+}
+
+void Program::declare(DocumentInfo* doc, Namespace* ns) {
+  for (const Decl& decl : doc->doc.decls) {
+    if (decl.kind == DeclKind::Operator) {
+      operators_.push_back({&decl, doc});
+      continue;
+    }
+    if (decl.kind != DeclKind::Model && decl.kind != DeclKind::Trait && decl.kind != DeclKind::GlobalAttribute) {
+      continue;
+    }
+    const std::string name(decl.name.text);
+    const std::string qualified = ns->qualified.empty() ? name : ns->qualified + "." + name;
+    if (ns->symbols.count(name)) {
+      sink_.report(DiagCode::DuplicateDeclaration, decl.name.range, "Duplicate declaration " + qualified);
+      continue;
+    }
+    if (decl.kind == DeclKind::GlobalAttribute) {
+      GlobalInfo& global = globals_.emplace_back();
+      global.decl = &decl;
+      global.doc = doc;
+      global.qualified = qualified;
+      ns->symbols[name].global = &global;
+      continue;
+    }
+    ModelInfo& model = models_.emplace_back();
+    model.name = name;
+    model.qualified = qualified;
+    model.decl = &decl;
+    model.doc = doc;
+    model.is_trait = decl.kind == DeclKind::Trait;
+    model.is_const = decl.is_const;
+    ns->symbols[name].model = &model;
+  }
+}
+
+void Program::process_imports(DocumentInfo* doc) {
+  const fs::path base_dir = fs::path(sources_.file(doc->doc.file).path()).parent_path();
+  for (const Decl& decl : doc->doc.decls) {
+    if (decl.kind != DeclKind::Import) continue;
+    const Expr& path_expr = doc->doc.expr(*decl.value);
+    fs::path target = fs::path(path_expr.string_value);
+    if (target.is_relative()) target = base_dir / target;
+    const std::string path = target.lexically_normal().generic_string();
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      sink_.report(DiagCode::ImportNotFound, decl.range, "Could not find imported file " + path);
+      continue;
+    }
+    const std::string extension = fs::path(path).extension().string();
+    const std::string alias = decl.alias ? to_string(*decl.alias) : fs::path(path).stem().string();
+    if (extension == ".openplx") {
+      DocumentInfo* imported = nullptr;
+      if (auto it = loaded_files_.find(path); it != loaded_files_.end()) {
+        imported = it->second;
+      } else {
+        std::string error;
+        std::optional<FileId> id = sources_.load(path, error);
+        if (!id) {
+          sink_.report(DiagCode::ImportNotFound, decl.range, "Could not read imported file " + path + ": " + error);
+          continue;
+        }
+        Namespace* ns = new_namespace(alias, nullptr, "", nullptr);
+        ns->qualified = "";
+        imported = load_document(*id, ns, nullptr);
+      }
+      if (decl.alias) {
+        doc->import_namespaces[alias] = imported->ns;
+      } else {
+        doc->imported_files.push_back(imported->ns);
+      }
+      continue;
+    }
+    std::string error;
+    std::optional<std::string> source = import_plugin_source(path, alias, error);
+    if (!source) {
+      sink_.report(DiagCode::UnsupportedImport, decl.range, error);
+      continue;
+    }
+    // The plugin describes the imported asset as OpenPLX text; it is read like any other document, in a
+    // scope of its own, and its one model becomes visible under the alias.
+    FileId id = sources_.add("<import " + path + ">", *source);
+    Namespace* ns = new_namespace("", nullptr, "", nullptr);
+    DocumentInfo* generated = load_document(id, ns, nullptr);
+    if (auto it = ns->symbols.find(alias); it != ns->symbols.end() && it->second.model) {
+      doc->import_models[alias] = it->second.model;
+    }
+    (void)generated;
+  }
+}
+
+DocumentInfo* Program::load_main(const std::string& path) {
+  const std::string normal = fs::absolute(path).lexically_normal().generic_string();
+  if (auto it = loaded_files_.find(normal); it != loaded_files_.end()) return it->second;
+  // A file inside a bundle folder is read as part of that bundle, so its neighbours are in scope.
+  if (std::optional<std::string> bundle_dir = enclosing_bundle_dir(normal)) {
+    const BundleConfig* bundle = nullptr;
+    for (const BundleConfig& b : bundles_) {
+      if (b.dir == *bundle_dir) bundle = &b;
+    }
+    if (!bundle) {
+      std::optional<BundleConfig> config = read_bundle_config(*bundle_dir, sources_, sink_);
+      if (config) bundle = add_bundle(std::move(*config));
+    }
+    if (bundle) {
+      Namespace* ns = bundle_root(bundle->name);
+      fs::path rel = fs::path(normal).parent_path().lexically_relative(bundle->dir);
+      for (const fs::path& part : rel) {
+        if (part == ".") continue;
+        load_namespace(ns);
+        auto child = ns->children.find(part.string());
+        if (child == ns->children.end()) break;
+        ns = child->second;
+      }
+      load_namespace(ns);
+      if (auto it = loaded_files_.find(normal); it != loaded_files_.end()) return it->second;
+    }
+  }
+  std::string error;
+  std::optional<FileId> id = sources_.load(path, error);
+  if (!id) {
+    sink_.report(DiagCode::IoError, {}, path + ": " + error);
+    return nullptr;
+  }
+  Namespace* ns = new_namespace("", nullptr, "", nullptr);
+  return load_document(*id, ns, nullptr);
+}
+
+bool Program::bundle_visible(DocumentInfo* from, const BundleConfig* target) const {
+  if (!from || !from->bundle || from->bundle == target) return true;
+  // Dependencies are visible transitively.
+  std::vector<const BundleConfig*> todo{from->bundle};
+  std::set<std::string> seen{from->bundle->name};
+  while (!todo.empty()) {
+    const BundleConfig* current = todo.back();
+    todo.pop_back();
+    for (const BundleDependency& dep : current->dependencies) {
+      if (dep.name == target->name) return true;
+      if (!seen.insert(dep.name).second) continue;
+      for (const BundleConfig& b : bundles_) {
+        if (b.name == dep.name) todo.push_back(&b);
+      }
+    }
+  }
+  return false;
+}
+
+Symbol Program::lookup_in(Namespace* ns, std::string_view name) {
+  load_namespace(ns);
+  if (auto it = ns->symbols.find(name); it != ns->symbols.end()) return it->second;
+  if (auto it = ns->children.find(name); it != ns->children.end()) return Symbol{nullptr, nullptr, it->second};
+  return {};
+}
+
+Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange where, bool report,
+                       const std::vector<std::string>* extra) {
+  if (Symbol s = lookup_in(doc->ns, name)) return s;
+  if (auto it = doc->import_models.find(name); it != doc->import_models.end()) return Symbol{it->second};
+  if (auto it = doc->import_namespaces.find(name); it != doc->import_namespaces.end()) {
+    return Symbol{nullptr, nullptr, it->second};
+  }
+  for (Namespace* imported : doc->imported_files) {
+    if (Symbol s = lookup_in(imported, name)) return s;
+  }
+  if (doc->bundle) {
+    if (Namespace* root = bundle_root(doc->bundle->name)) {
+      if (Symbol s = lookup_in(root, name)) return s;
+    }
+  }
+  if (Namespace* root = bundle_root(name)) {
+    if (bundle_visible(doc, root->bundle)) {
+      for (const BundleDependency& dep : doc->bundle ? doc->bundle->dependencies : std::vector<BundleDependency>{}) {
+        if (dep.name == name && !dep.version.empty() && dep.version != root->bundle->version && report) {
+          sink_.report(DiagCode::BundleVersionMismatch, where,
+                       "Bundle " + doc->bundle->name + " requires " + dep.name + "@" + dep.version + " but found " +
+                           dep.name + "@" + root->bundle->version);
+        }
+      }
+      return Symbol{nullptr, nullptr, root};
+    }
+    if (report) {
+      sink_.report(DiagCode::UnknownName, where,
+                   "Unknown name " + std::string(name) + " (bundle not declared as dependency of " +
+                       doc->bundle->name + ")");
+    }
+    return {};
+  }
+  if (report) {
+    std::string message = "Unknown name " + std::string(name);
+    std::vector<std::string> candidates = names_visible_from(doc);
+    if (extra) candidates.insert(candidates.end(), extra->begin(), extra->end());
+    std::string near = suggestion(name, candidates);
+    if (!near.empty()) message += "; did you mean `" + near + "`?";
+    sink_.report(DiagCode::UnknownName, where, message);
+  }
+  return {};
+}
+
+Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report) {
+  Symbol s = lookup(doc, name.parts[0].text, name.parts[0].range, report);
+  for (size_t i = 1; s && i < name.parts.size(); ++i) {
+    if (!s.ns) {
+      if (report) {
+        sink_.report(DiagCode::UnknownName, name.parts[i].range,
+                     "Unknown name " + to_string(name) + ": `" + std::string(name.parts[i - 1].text) +
+                         "` is not a namespace");
+      }
+      return {};
+    }
+    Namespace* ns = s.ns;
+    s = lookup_in(ns, name.parts[i].text);
+    if (!s && report) {
+      std::vector<std::string> candidates;
+      for (const auto& [n, sym] : ns->symbols) candidates.push_back(n);
+      for (const auto& [n, child] : ns->children) candidates.push_back(n);
+      std::string message = "Unknown name " + to_string(name) + ": no `" + std::string(name.parts[i].text) +
+                            "` in " + (ns->qualified.empty() ? ns->name : ns->qualified);
+      std::string near = suggestion(name.parts[i].text, candidates);
+      if (!near.empty()) message += "; did you mean `" + near + "`?";
+      sink_.report(DiagCode::UnknownName, name.parts[i].range, message);
+    }
+  }
+  return s;
+}
+
+ModelInfo* Program::resolve_model_name(DocumentInfo* doc, const QualifiedName& name, bool report) {
+  Symbol s = lookup_qualified(doc, name, report);
+  if (!s) return nullptr;
+  if (!s.model) {
+    if (report) {
+      sink_.report(DiagCode::NotAType, name.range,
+                   "`" + to_string(name) + "` is " + (s.global ? "a global attribute" : "a namespace") +
+                       ", not a model or trait");
+    }
+    return nullptr;
+  }
+  return s.model;
+}
+
+ModelInfo* Program::builtin_model(std::string_view qualified) {
+  Namespace* ns = nullptr;
+  Symbol s;
+  size_t start = 0;
+  while (start <= qualified.size()) {
+    size_t end = qualified.find('.', start);
+    if (end == std::string_view::npos) end = qualified.size();
+    std::string_view part = qualified.substr(start, end - start);
+    s = ns ? lookup_in(ns, part) : Symbol{nullptr, nullptr, bundle_root(part)};
+    if (!s) return nullptr;
+    ns = s.ns;
+    start = end + 1;
+  }
+  return s.model;
+}
+
+ModelInfo* Program::make_trait_extension(ModelInfo* base, std::vector<ModelInfo*> traits) {
+  std::string name = base->qualified + " with ";
+  for (size_t i = 0; i < traits.size(); ++i) name += (i ? ", " : "") + traits[i]->qualified;
+  for (ModelInfo& m : models_) {
+    if (!m.decl && m.qualified == name) return &m;
+  }
+  ModelInfo& model = models_.emplace_back();
+  model.name = name;
+  model.qualified = name;
+  model.doc = base->doc;
+  model.is_const = false;
+  model.base = base;
+  model.traits = std::move(traits);
+  model.state = ModelInfo::State::Resolved;
+  model.linearization.push_back(&model);
+  auto add = [&](ModelInfo* m) {
+    for (ModelInfo* l : m->linearization) {
+      if (std::find(model.linearization.begin(), model.linearization.end(), l) == model.linearization.end()) {
+        model.linearization.push_back(l);
+      }
+    }
+  };
+  for (ModelInfo* t : model.traits) add(t);
+  add(base);
+  return &model;
+}
+
+void Program::flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix) {
+  auto add = [&](Entry::Kind kind, const Member& m, std::vector<std::string_view> path) {
+    Entry e;
+    e.kind = kind;
+    e.parent_key = join(path, path.size() - 1);
+    e.path = std::move(path);
+    e.member = &m;
+    e.value = m.value;
+    e.index = static_cast<uint32_t>(model->entries.size());
+    model->entries.push_back(std::move(e));
+  };
+  auto extended = [&](const QualifiedName& name) {
+    std::vector<std::string_view> path = prefix;
+    for (const Ident& part : name.parts) path.push_back(part.text);
+    return path;
+  };
+  for (const Member& m : members) {
+    switch (m.kind) {
+      case MemberKind::Method:
+        if (prefix.empty()) model->methods.push_back({&m, model});
+        break;
+      case MemberKind::TraitUse:
+        if (prefix.empty()) {
+          if (model->is_trait) {
+            sink_.report(DiagCode::TraitRestriction, m.range, "Trait " + model->name + " cannot use with");
+            break;
+          }
+          if (ModelInfo* trait = resolve_model_name(model->doc, m.path)) {
+            if (!trait->is_trait) {
+              sink_.report(DiagCode::TraitRestriction, m.path.range,
+                           "`" + trait->qualified + "` is a model, not a trait; only traits go after `with`");
+            } else {
+              model->traits.push_back(trait);
+            }
+          }
+        } else {
+          Entry e;
+          e.kind = Entry::Kind::WithTrait;
+          e.path = prefix;
+          e.path.push_back("with");
+          e.parent_key = join(prefix, prefix.size());
+          e.member = &m;
+          e.index = static_cast<uint32_t>(model->entries.size());
+          model->entries.push_back(std::move(e));
+        }
+        break;
+      case MemberKind::Annotation: {
+        std::vector<std::string_view> path = extended(m.path);
+        if (prefix.empty()) {
+          model->annotations[std::string(m.path.parts[0].text)] = *m.value;
+        } else {
+          add(Entry::Kind::Annotation, m, std::move(path));
+        }
+        break;
+      }
+      case MemberKind::Attribute: {
+        std::vector<std::string_view> path = extended(m.path);
+        add(Entry::Kind::Declare, m, path);
+        model->entries.back().from_declaration = true;
+        if (m.has_block) {
+          prefix.push_back(m.path.parts[0].text);
+          flatten(model, m.block, prefix);
+          prefix.pop_back();
+        }
+        break;
+      }
+      case MemberKind::Becomes:
+      case MemberKind::Assignment: {
+        std::vector<std::string_view> path = extended(m.path);
+        if (m.kind == MemberKind::Becomes) add(Entry::Kind::Becomes, m, path);
+        if (m.value) add(Entry::Kind::Value, m, path);
+        if (m.has_block) {
+          const size_t size = prefix.size();
+          for (const Ident& part : m.path.parts) prefix.push_back(part.text);
+          flatten(model, m.block, prefix);
+          prefix.resize(size);
+        }
+        break;
+      }
+    }
+  }
+}
+
+bool Program::resolve(ModelInfo* model) {
+  switch (model->state) {
+    case ModelInfo::State::Resolved: return true;
+    case ModelInfo::State::Failed: return false;
+    case ModelInfo::State::Resolving:
+      sink_.report(DiagCode::CyclicInheritance, model->decl ? model->decl->name.range : SourceRange{},
+                   "Cyclic inheritance involving " + model->qualified);
+      model->state = ModelInfo::State::Failed;
+      return false;
+    case ModelInfo::State::Unresolved: break;
+  }
+  model->state = ModelInfo::State::Resolving;
+  const Decl& decl = *model->decl;
+  bool ok = true;
+  if (decl.base) {
+    model->base = resolve_model_name(model->doc, *decl.base);
+    if (!model->base) {
+      ok = false;
+    } else if (!resolve(model->base)) {
+      if (model->state == ModelInfo::State::Failed) return false;  // the cycle was reported at this model
+      ok = false;
+    } else if (model->base->is_trait && !model->is_trait) {
+      sink_.report(DiagCode::TraitRestriction, decl.base->range,
+                   "Model " + model->name + " cannot extend trait " + model->base->qualified + "; use with");
+      ok = false;
+    } else if (!model->base->is_trait && model->is_trait) {
+      sink_.report(DiagCode::TraitRestriction, decl.base->range,
+                   "Trait " + model->name + " cannot extend model " + model->base->qualified);
+      ok = false;
+    }
+  }
+  for (const QualifiedName& name : decl.traits) {
+    if (ModelInfo* trait = resolve_model_name(model->doc, name)) {
+      if (!trait->is_trait) {
+        sink_.report(DiagCode::TraitRestriction, name.range,
+                     "`" + trait->qualified + "` is a model, not a trait; only traits go after `with`");
+      } else {
+        model->traits.push_back(trait);
+      }
+    }
+  }
+  std::vector<std::string_view> prefix;
+  flatten(model, decl.body, prefix);
+  for (ModelInfo* trait : model->traits) ok = resolve(trait) && ok;
+
+  // Linearization: the model, its traits (each with its parent traits), then the base chain.
+  model->linearization = {model};
+  auto add_all = [&](ModelInfo* m) {
+    for (ModelInfo* l : m->linearization) {
+      if (std::find(model->linearization.begin(), model->linearization.end(), l) == model->linearization.end()) {
+        model->linearization.push_back(l);
+      }
+    }
+  };
+  for (ModelInfo* trait : model->traits) {
+    if (trait->state == ModelInfo::State::Resolved) add_all(trait);
+  }
+  if (model->base && model->base->state == ModelInfo::State::Resolved) add_all(model->base);
+
+  // Trait restrictions (spec §8): no shared ancestor between two traits of a model.
+  for (size_t i = 0; i < model->traits.size(); ++i) {
+    for (size_t j = i + 1; j < model->traits.size(); ++j) {
+      for (ModelInfo* a : model->traits[i]->linearization) {
+        const auto& other = model->traits[j]->linearization;
+        if (std::find(other.begin(), other.end(), a) != other.end()) {
+          sink_.report(DiagCode::TraitRestriction, decl.name.range,
+                       "Traits " + model->traits[i]->qualified + " and " + model->traits[j]->qualified +
+                           " share common ancestor " + a->qualified);
+          ok = false;
+          break;
+        }
+      }
+    }
+  }
+
+  // Index the entries; report duplicates within this one body.
+  std::map<std::string, const Entry*> declared;
+  std::map<std::string, const Entry*> assigned;
+  for (const Entry& e : model->entries) {
+    const std::string key = join(e.path, e.path.size());
+    model->by_parent[e.parent_key].push_back(e.index);
+    const bool assigns = e.kind == Entry::Kind::Value || e.kind == Entry::Kind::Becomes;
+    for (size_t n = 1; n < e.path.size(); ++n) {
+      model->prefixes.emplace(join(e.path, n), e.index);
+      if (assigns) model->assigned_prefixes.emplace(join(e.path, n), e.index);
+    }
+    if (e.kind == Entry::Kind::Declare && !declared.emplace(key, &e).second) {
+      sink_.report(DiagCode::DuplicateAttribute, e.member->path.range, "Duplicate attribute name " + key);
+      ok = false;
+    }
+    if (e.kind == Entry::Kind::Value && !assigned.emplace(key, &e).second) {
+      sink_.report(DiagCode::DuplicateAssignment, e.member->path.range, "Duplicate assignment to " + key);
+      ok = false;
+    }
+  }
+  // Attribute names are unique across the base chain and traits.
+  for (const Entry& e : model->entries) {
+    if (e.kind != Entry::Kind::Declare || e.path.size() != 1) continue;
+    for (size_t k = 1; k < model->linearization.size(); ++k) {
+      ModelInfo* other = model->linearization[k];
+      auto it = other->by_parent.find("");
+      if (it == other->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        const Entry& o = other->entries[index];
+        if (o.kind != Entry::Kind::Declare || o.path[0] != e.path[0]) continue;
+        const bool from_trait = other->is_trait && !model->is_trait;
+        sink_.report(from_trait ? DiagCode::TraitRestriction : DiagCode::DuplicateAttribute, e.member->path.range,
+                     from_trait ? "Trait " + other->qualified + " injects attribute " + std::string(e.path[0]) +
+                                      " which already exists in " + model->qualified
+                                : "Duplicate attribute name " + std::string(e.path[0]) + " (already declared in " +
+                                      other->qualified + ")");
+        ok = false;
+      }
+    }
+  }
+  std::set<std::string_view> methods;
+  for (const MethodInfo& method : model->methods) {
+    if (!methods.insert(method.member->path.parts[0].text).second) {
+      sink_.report(DiagCode::DuplicateMethod, method.member->path.range,
+                   "Duplicate method " + std::string(method.member->path.parts[0].text));
+    }
+  }
+  model->state = ok ? ModelInfo::State::Resolved : ModelInfo::State::Failed;
+  return ok;
+}
+
+std::string Program::suggestion(std::string_view name, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_distance = std::max<size_t>(1, name.size() / 3) + 1;
+  for (const std::string& candidate : candidates) {
+    if (candidate == name) continue;
+    size_t d = edit_distance(name, candidate);
+    if (d < best_distance) {
+      best_distance = d;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+std::vector<std::string> Program::names_visible_from(DocumentInfo* doc) {
+  std::vector<std::string> names;
+  for (const auto& [name, sym] : doc->ns->symbols) names.push_back(name);
+  for (const auto& [name, child] : doc->ns->children) names.push_back(name);
+  for (const auto& [name, model] : doc->import_models) names.push_back(name);
+  for (const auto& [name, ns] : doc->import_namespaces) names.push_back(name);
+  for (const auto& [name, root] : bundle_roots_) names.push_back(name);
+  return names;
+}
+
+}  // namespace openplx::frontend

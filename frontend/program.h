@@ -1,0 +1,169 @@
+// The declarations of a run: every parsed document, the namespace tree (bundles and their folders), and one
+// ModelInfo per model or trait with its base, traits and flattened members. Bundle folders are parsed
+// lazily, the first time a name inside them is looked up, so a model pays only for the bundles it uses.
+//
+// Name lookup follows spec/openplx-language.md §11: members first (done by the evaluator), then the
+// namespace of the file (its folder, or the file itself outside bundles, plus its imports), then the
+// enclosing bundle's root, then bundle names.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "frontend/ast.h"
+#include "frontend/bundles.h"
+#include "frontend/diagnostics.h"
+#include "frontend/source.h"
+
+namespace openplx::frontend {
+
+struct ModelInfo;
+struct Namespace;
+class Program;
+
+// A loaded document and where its names resolve.
+struct DocumentInfo {
+  Document doc;
+  Namespace* ns = nullptr;              // namespace its declarations belong to
+  const BundleConfig* bundle = nullptr;  // enclosing bundle, if any
+  std::map<std::string, Namespace*, std::less<>> import_namespaces;   // `import @"x.openplx" as X`
+  std::map<std::string, ModelInfo*, std::less<>> import_models;      // asset imports
+  std::vector<Namespace*> imported_files;  // `import @"x.openplx"` without `as`: looked up like locals
+};
+
+struct GlobalInfo {
+  const Decl* decl = nullptr;
+  DocumentInfo* doc = nullptr;
+  std::string qualified;
+};
+
+struct Symbol {
+  ModelInfo* model = nullptr;
+  GlobalInfo* global = nullptr;
+  Namespace* ns = nullptr;
+  explicit operator bool() const { return model || global || ns; }
+};
+
+struct Namespace {
+  std::string name;
+  std::string qualified;  // "Physics3D.Bodies"; empty for a file's own scope outside bundles
+  Namespace* parent = nullptr;
+  std::string dir;  // folder on disk whose .openplx files fill it; empty when filled otherwise
+  const BundleConfig* bundle = nullptr;
+  bool loaded = false;
+  std::map<std::string, Namespace*, std::less<>> children;
+  std::map<std::string, Symbol, std::less<>> symbols;
+};
+
+// One member of a model body, flattened: nested blocks become entries whose path starts with the
+// attribute they configure (`inner is In:` + `v: 1` gives a Declare at [inner] and a Value at [inner, v]).
+struct Entry {
+  enum class Kind : uint8_t { Declare, Value, Becomes, Annotation, WithTrait };
+  Kind kind;
+  std::vector<std::string_view> path;  // for Annotation: the annotated attribute's path ([] = the model)
+  std::string parent_key;              // path minus its last segment, joined with '.'
+  const Member* member = nullptr;      // nullptr only for synthetic entries
+  std::optional<ExprId> value;
+  bool from_declaration = false;  // a Value that is a declaration's default, not an assignment
+  uint32_t index = 0;             // position in the owning ModelInfo's entries
+};
+
+struct MethodInfo {
+  const Member* member;
+  ModelInfo* owner;
+};
+
+struct ModelInfo {
+  std::string name;
+  std::string qualified;
+  const Decl* decl = nullptr;  // nullptr for synthetic models (asset imports, `T with X` types)
+  DocumentInfo* doc = nullptr;
+  bool is_trait = false;
+  bool is_const = false;
+
+  // Filled by Program::resolve().
+  enum class State : uint8_t { Unresolved, Resolving, Resolved, Failed } state = State::Unresolved;
+  ModelInfo* base = nullptr;
+  std::vector<ModelInfo*> traits;         // direct `with` traits
+  std::vector<ModelInfo*> linearization;  // self, own traits (with their parents), then the base's, deduplicated
+  std::vector<Entry> entries;
+  std::unordered_map<std::string, std::vector<uint32_t>> by_parent;  // parent_key -> entries
+  std::unordered_map<std::string, uint32_t> prefixes;  // every strict prefix of an entry path -> an entry
+  std::unordered_map<std::string, uint32_t> assigned_prefixes;  // the same, for Value and Becomes entries
+  std::vector<MethodInfo> methods;                     // own methods
+  std::map<std::string, ExprId, std::less<>> annotations;  // own model annotations
+
+  bool is_subtype_of(const ModelInfo* other) const;  // reflexive; through bases and traits
+};
+
+struct OperatorInfo {
+  const Decl* decl;
+  DocumentInfo* doc;
+};
+
+class Program {
+ public:
+  Program(SourceManager& sources, DiagnosticSink& sink);
+  ~Program();
+
+  // Finds the bundles on `search_path` (see bundles.h). Call once before loading files.
+  void set_bundles(std::vector<BundleConfig> bundles);
+  // Registers one bundle (no-op when one of that name exists); returns the registered one.
+  const BundleConfig* add_bundle(BundleConfig bundle);
+  const std::deque<BundleConfig>& bundles() const { return bundles_; }
+
+  // Loads the user's file (and its imports). Returns nullptr when it cannot be read.
+  DocumentInfo* load_main(const std::string& path);
+
+  // Resolves base, traits and entries of a model; false (and diagnostics) on errors such as cycles.
+  bool resolve(ModelInfo* model);
+
+  // Name lookup for a name written in `doc`: its scope, the bundle root, then bundle names.
+  // `extra` adds candidates (the scope's attribute names) to the "did you mean" of an unknown name.
+  Symbol lookup(DocumentInfo* doc, std::string_view name, SourceRange where, bool report = true,
+                const std::vector<std::string>* extra = nullptr);
+  // A member of a namespace (loads it on first use).
+  Symbol lookup_in(Namespace* ns, std::string_view name);
+  // Resolves a qualified name (type names: no members).
+  Symbol lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report = true);
+  ModelInfo* resolve_model_name(DocumentInfo* doc, const QualifiedName& name, bool report = true);
+
+  const std::vector<OperatorInfo>& operators() const { return operators_; }
+  ModelInfo* builtin_model(std::string_view qualified);  // e.g. "Math.Vec3"; loads its namespace
+  ModelInfo* make_trait_extension(ModelInfo* base, std::vector<ModelInfo*> traits);
+
+  SourceManager& sources() { return sources_; }
+  DiagnosticSink& sink() { return sink_; }
+  // Closest names to `name` among `candidates` (for "did you mean").
+  static std::string suggestion(std::string_view name, const std::vector<std::string>& candidates);
+  std::vector<std::string> names_visible_from(DocumentInfo* doc);
+
+ private:
+  void load_namespace(Namespace* ns);
+  DocumentInfo* load_document(FileId file, Namespace* ns, const BundleConfig* bundle);
+  void declare(DocumentInfo* doc, Namespace* ns);
+  void process_imports(DocumentInfo* doc);
+  Namespace* new_namespace(std::string name, Namespace* parent, std::string dir, const BundleConfig* bundle);
+  void flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix);
+  bool bundle_visible(DocumentInfo* from, const BundleConfig* target) const;
+  Namespace* bundle_root(std::string_view name);
+
+  SourceManager& sources_;
+  DiagnosticSink& sink_;
+  std::deque<BundleConfig> bundles_;  // stable addresses: namespaces and documents point at them
+  std::map<std::string, Namespace*, std::less<>> bundle_roots_;
+  std::deque<Namespace> namespaces_;
+  std::deque<DocumentInfo> documents_;
+  std::deque<ModelInfo> models_;
+  std::deque<GlobalInfo> globals_;
+  std::vector<OperatorInfo> operators_;
+  std::map<std::string, DocumentInfo*> loaded_files_;  // absolute path -> document
+};
+
+}  // namespace openplx::frontend

@@ -1,0 +1,97 @@
+// Types and values of evaluated OpenPLX (spec §5, §10, §12). Model instances are Objects in the
+// ObjectGraph; a Value refers to one by ObjectId.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace openplx::frontend {
+
+struct ModelInfo;
+
+enum class TypeKind : uint8_t { Error, Int, Real, Bool, String, Model, Union };
+
+struct Type {
+  TypeKind kind = TypeKind::Error;
+  ModelInfo* model = nullptr;      // Model
+  std::vector<Type> alternatives;  // Union
+  bool is_array = false;
+
+  static Type primitive(TypeKind kind) {
+    Type t;
+    t.kind = kind;
+    return t;
+  }
+  static Type of_model(ModelInfo* model) {
+    Type t;
+    t.kind = TypeKind::Model;
+    t.model = model;
+    return t;
+  }
+  bool is_primitive() const { return kind != TypeKind::Model && kind != TypeKind::Union; }
+  Type element() const {
+    Type t = *this;
+    t.is_array = false;
+    return t;
+  }
+  std::string describe() const;
+};
+
+using ObjectId = uint32_t;
+inline constexpr ObjectId kNoObject = UINT32_MAX;
+
+struct Value {
+  enum class Kind : uint8_t { Unset, Error, Int, Real, Bool, String, Object, Array };
+  Kind kind = Kind::Unset;
+  bool bool_value = false;
+  int64_t int_value = 0;
+  double real_value = 0.0;
+  ObjectId object = kNoObject;
+  std::string string_value;
+  std::vector<Value> array;
+
+  static Value error() { return make(Kind::Error); }
+  static Value of_int(int64_t v) {
+    Value r = make(Kind::Int);
+    r.int_value = v;
+    return r;
+  }
+  static Value of_real(double v) {
+    Value r = make(Kind::Real);
+    r.real_value = v;
+    return r;
+  }
+  static Value of_bool(bool v) {
+    Value r = make(Kind::Bool);
+    r.bool_value = v;
+    return r;
+  }
+  static Value of_string(std::string v) {
+    Value r = make(Kind::String);
+    r.string_value = std::move(v);
+    return r;
+  }
+  static Value of_object(ObjectId id) {
+    Value r = make(Kind::Object);
+    r.object = id;
+    return r;
+  }
+  static Value of_array(std::vector<Value> items) {
+    Value r = make(Kind::Array);
+    r.array = std::move(items);
+    return r;
+  }
+  bool is_error() const { return kind == Kind::Error; }
+  bool is_number() const { return kind == Kind::Int || kind == Kind::Real; }
+  double as_real() const { return kind == Kind::Int ? static_cast<double>(int_value) : real_value; }
+
+ private:
+  static Value make(Kind kind) {
+    Value v;
+    v.kind = kind;
+    return v;
+  }
+};
+
+}  // namespace openplx::frontend
