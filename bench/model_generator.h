@@ -36,3 +36,23 @@ inline std::string generate_document(size_t bytes) {
 }
 
 }  // namespace openplx::bench
+
+namespace openplx::bench {
+
+// A model of `groups` x `parts_per_group` Part instances, each with Reals, an expression and a Vec3 value.
+inline std::string generate_instances(size_t groups, size_t parts_per_group) {
+  std::string out =
+      "Part:\n"
+      "    mass is Real: 1.0\n"
+      "    offset is Math.Vec3: {0, 0, 0.5}\n"
+      "    scaled is Real: mass * 2 + offset.z\n"
+      "Group:\n";
+  for (size_t p = 0; p < parts_per_group; ++p) {
+    out += "    p" + std::to_string(p) + " is Part:\n        mass: " + std::to_string(p + 1) + ".5\n";
+  }
+  out += "Scene:\n";
+  for (size_t g = 0; g < groups; ++g) out += "    g" + std::to_string(g) + " is Group\n";
+  return out;
+}
+
+}  // namespace openplx::bench

@@ -768,6 +768,8 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
       std::vector<Value> items;
       for (ExprId item : e.operands) {
         Value v = eval(item, scope, typed ? &element : nullptr);
+        // Checked here so a wrong element is reported where it is written.
+        if (typed) v = convert(std::move(v), element, doc.expr(item).range, "an element of " + expected->describe());
         if (v.is_error()) return v;
         items.push_back(std::move(v));
       }

@@ -247,6 +247,11 @@ DocumentInfo* Program::load_main(const std::string& path) {
   return load_document(*id, ns, nullptr);
 }
 
+DocumentInfo* Program::load_text(const std::string& path, std::string text) {
+  FileId id = sources_.add(path, std::move(text));
+  return load_document(id, new_namespace("", nullptr, "", nullptr), nullptr);
+}
+
 bool Program::bundle_visible(DocumentInfo* from, const BundleConfig* target) const {
   if (!from || !from->bundle || from->bundle == target) return true;
   // Dependencies are visible transitively.

@@ -120,6 +120,8 @@ class Program {
 
   // Loads the user's file (and its imports). Returns nullptr when it cannot be read.
   DocumentInfo* load_main(const std::string& path);
+  // Loads text held in memory as a stand-alone file named `path` (fuzzing, tests).
+  DocumentInfo* load_text(const std::string& path, std::string text);
 
   // Resolves base, traits and entries of a model; false (and diagnostics) on errors such as cycles.
   bool resolve(ModelInfo* model);

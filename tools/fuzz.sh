@@ -1,17 +1,20 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer target with clang (ASan+UBSan) and runs it.
-#   tools/fuzz.sh [SECONDS]   (default 600). Crashes land in fuzz-out/; add fixed ones to tests/fuzz/regressions.
+#   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer).
+# Crashes land in fuzz-out/TARGET/crashes; add fixed ones to tests/fuzz/regressions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-600}
+target=${2:-lex_parse_fuzzer}
 tools/install-deps.sh --fuzz
 CXX=clang++ CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOPENPLX_FUZZ=ON \
   -DOPENPLX_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz --target lex_parse_fuzzer -j"$(nproc)"
+cmake --build build-fuzz --target "$target" -j"$(nproc)"
 corpus_dir=$(sed -n 's/^OPENPLX_CORPUS_DIR:PATH=//p' build-fuzz/CMakeCache.txt)
-mkdir -p fuzz-out/corpus fuzz-out/crashes
+out=fuzz-out/$target
+mkdir -p "$out/corpus" "$out/crashes"
 # Seeds: the real files, the reconstructed seed snippets and the saved regressions.
-find "$corpus_dir" tests/seed_snippets tests/fuzz/regressions -name '*.openplx' -exec cp {} fuzz-out/corpus/ \;
-build-fuzz/tests/fuzz/lex_parse_fuzzer fuzz-out/corpus -dict=tests/fuzz/openplx.dict \
+find "$corpus_dir" tests/seed_snippets tests/fuzz/regressions -name '*.openplx' -exec cp {} "$out/corpus/" \;
+"build-fuzz/tests/fuzz/$target" "$out/corpus" -dict=tests/fuzz/openplx.dict \
   -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
-  -artifact_prefix=fuzz-out/crashes/
+  -artifact_prefix="$out/crashes/"

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/fuzz/fuzz_evaluate.h"
 #include "tests/fuzz/fuzz_lex_parse.h"
 
 namespace fs = std::filesystem;
@@ -20,6 +21,7 @@ TEST(FuzzRegression, SavedInputsRunClean) {
     text << in.rdbuf();
     const std::string data = text.str();
     openplx::fuzz::lex_parse_one(reinterpret_cast<const uint8_t*>(data.data()), data.size());
+    openplx::fuzz::evaluate_one(reinterpret_cast<const uint8_t*>(data.data()), data.size());
     ++count;
   }
   EXPECT_GT(count, 0u);

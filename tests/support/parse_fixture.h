@@ -17,28 +17,16 @@ namespace openplx::testing {
 
 namespace fe = openplx::frontend;
 
-class ParseTest : public ::testing::Test {
+// Owns the sources and the sink; every diagnostic must be claimed by expect_diag() (or accept_all_diags()).
+class DiagnosticTest : public ::testing::Test {
  protected:
-  // Lexes and parses `text` as the file `path`; diagnostics collect in sink().
-  const fe::Document& parse(const std::string& text, const std::string& path = "test.openplx") {
-    file_ = sources_.add(path, text);
-    doc_ = fe::parse_file(sources_, file_, sink_);
-    return doc_;
-  }
-  std::vector<fe::Token> lex(const std::string& text, const std::string& path = "test.openplx") {
-    file_ = sources_.add(path, text);
-    const size_t first = sink_.diagnostics().size();
-    auto tokens = fe::lex(sources_.file(file_), file_, sink_);
-    sink_.sort_by_position(first);
-    return tokens;
-  }
-
   // Checks that a diagnostic with `code` sits at line:col and marks it checked. Returns its message.
   std::string expect_diag(fe::DiagCode code, uint32_t line, uint32_t col) {
     for (size_t i = 0; i < sink_.diagnostics().size(); ++i) {
       const fe::Diagnostic& d = sink_.diagnostics()[i];
       if (checked_.size() <= i) checked_.resize(sink_.diagnostics().size(), false);
       if (checked_[i] || d.code != code) continue;
+      if (d.range.file == fe::kNoFile) continue;
       fe::LineCol pos = sources_.file(d.range.file).line_col(d.range.begin);
       if (pos.line == line && pos.col == col) {
         checked_[i] = true;
@@ -79,11 +67,44 @@ class ParseTest : public ::testing::Test {
     }
   }
 
+  // Like expect_diag, for a diagnostic in any file whose message contains `text`.
+  std::string expect_diag_containing(fe::DiagCode code, const std::string& text) {
+    for (size_t i = 0; i < sink_.diagnostics().size(); ++i) {
+      const fe::Diagnostic& d = sink_.diagnostics()[i];
+      if (checked_.size() <= i) checked_.resize(sink_.diagnostics().size(), false);
+      if (checked_[i] || d.code != code || d.message.find(text) == std::string::npos) continue;
+      checked_[i] = true;
+      return d.message;
+    }
+    ADD_FAILURE() << "no unchecked diagnostic [" << fe::code_name(code) << "] containing \"" << text
+                  << "\"; have:\n"
+                  << all_diags();
+    return {};
+  }
+
   fe::SourceManager sources_;
   fe::DiagnosticSink sink_;
+  std::vector<bool> checked_;
+};
+
+class ParseTest : public DiagnosticTest {
+ protected:
+  // Lexes and parses `text` as the file `path`; diagnostics collect in sink().
+  const fe::Document& parse(const std::string& text, const std::string& path = "test.openplx") {
+    file_ = sources_.add(path, text);
+    doc_ = fe::parse_file(sources_, file_, sink_);
+    return doc_;
+  }
+  std::vector<fe::Token> lex(const std::string& text, const std::string& path = "test.openplx") {
+    file_ = sources_.add(path, text);
+    const size_t first = sink_.diagnostics().size();
+    auto tokens = fe::lex(sources_.file(file_), file_, sink_);
+    sink_.sort_by_position(first);
+    return tokens;
+  }
+
   fe::FileId file_ = fe::kNoFile;
   fe::Document doc_;
-  std::vector<bool> checked_;
 };
 
 }  // namespace openplx::testing

@@ -8,6 +8,7 @@
 #include "frontend/ast_dump.h"
 #include "frontend/bundles.h"
 #include "frontend/evaluator.h"
+#include "frontend/pipeline.h"
 #include "frontend/program.h"
 #include "frontend/value_format.h"
 #include "frontend/diagnostics.h"
@@ -61,17 +62,11 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
         << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
     return false;
   }
-  fe::Program program(sources, sink);
-  program.set_bundles(fe::discover_bundles(fe::bundle_search_path(options.bundle_dirs), sources, sink));
-  fe::DocumentInfo* doc = program.load_main(options.input);
-  if (!doc || sink.has_errors()) return true;  // syntax errors: evaluating would only repeat them
-  fe::ModelInfo* root_model = fe::select_root_model(program, doc, options.model ? &*options.model : nullptr);
-  if (!root_model) return true;
-  fe::Evaluator evaluator(program, sink);
-  fe::ObjectId root = evaluator.instantiate_root(root_model);
-  if (root == fe::kNoObject) return true;
-  evaluator.evaluate_all(root);
-  if (options.dump == DumpKind::Values) fe::dump_values(text, evaluator, root);
+  fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
+  fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
+  if (options.dump == DumpKind::Values && evaluation.root != fe::kNoObject) {
+    fe::dump_values(text, *evaluation.evaluator, evaluation.root);
+  }
   return true;
 }
 

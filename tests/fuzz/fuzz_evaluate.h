@@ -1,0 +1,30 @@
+// The body of the evaluator fuzz target: parse, pick the root model, instantiate and evaluate everything,
+// then print the values. Shared by the libFuzzer entry point and the regression test.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <sstream>
+#include <string>
+
+#include "frontend/bundles.h"
+#include "frontend/evaluator.h"
+#include "frontend/pipeline.h"
+#include "frontend/value_format.h"
+
+namespace openplx::fuzz {
+
+inline void evaluate_one(const uint8_t* data, size_t size) {
+  namespace fe = openplx::frontend;
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink;
+  fe::LoadRequest request{"/fuzz/input.openplx", std::nullopt, {},
+                          std::string(reinterpret_cast<const char*>(data), size)};
+  fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
+  if (evaluation.root == fe::kNoObject) return;
+  std::ostringstream out;
+  fe::dump_values(out, *evaluation.evaluator, evaluation.root);
+  fe::print_diagnostics(out, sources, sink.diagnostics());
+}
+
+}  // namespace openplx::fuzz
