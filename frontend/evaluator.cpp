@@ -13,7 +13,7 @@ namespace {
 // Deep enough for any real model (MuJoCo stops near 100 levels); a recursive model hits it quickly.
 constexpr uint32_t kMaxInstanceDepth = 1000;
 // Attributes whose values depend on each other in a chain this long would overflow the stack.
-constexpr int kMaxEvalDepth = 2000;
+constexpr int kMaxEvalDepth = 1000;
 
 std::string join_key(const std::string& rel, std::string_view slot) {
   return rel.empty() ? std::string(slot) : rel + "." + std::string(slot);

@@ -1,6 +1,7 @@
 #include "frontend/pipeline.h"
 
 #include "frontend/bundles.h"
+#include "frontend/large_stack.h"
 
 namespace openplx::frontend {
 
@@ -22,8 +23,10 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
   }
   if (!root_model) return result;
   result.evaluator = std::make_unique<Evaluator>(*result.program, sink);
-  result.root = result.evaluator->instantiate_root(root_model);
-  if (result.root != kNoObject) result.evaluator->evaluate_all(result.root);
+  run_with_large_stack([&] {
+    result.root = result.evaluator->instantiate_root(root_model);
+    if (result.root != kNoObject) result.evaluator->evaluate_all(result.root);
+  });
   return result;
 }
 
