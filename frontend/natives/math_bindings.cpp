@@ -238,8 +238,9 @@ void add_functions(NativeRegistry& r) {
                                                                {"sqrt", &natives::sqrt},
                                                                {"rad_to_deg", &natives::rad_to_deg},
                                                                {"deg_to_rad", &natives::deg_to_rad}}};
-  for (const auto& [name, fn] : unary) {
-    r.add(std::string("Math.Functions.") + name, [fn](NativeCall&, Args a) { return real(fn(a[0].as_real())); });
+  for (const auto& entry : unary) {
+    Unary fn = entry.second;  // a copy: clang 14 cannot capture structured bindings
+    r.add(std::string("Math.Functions.") + entry.first, [fn](NativeCall&, Args a) { return real(fn(a[0].as_real())); });
   }
   using Reduce = double (*)(std::span<const double>);
   const std::array<std::pair<const char*, Reduce>, 6> reduce = {{{"mean", &natives::mean},
@@ -248,8 +249,9 @@ void add_functions(NativeRegistry& r) {
                                                                  {"min", &natives::min},
                                                                  {"max", &natives::max},
                                                                  {"sum", &natives::sum}}};
-  for (const auto& [name, fn] : reduce) {
-    r.add(std::string("Math.Functions.") + name, [fn](NativeCall& c, Args a) { return real(fn(c.reals(a[0]))); });
+  for (const auto& entry : reduce) {
+    Reduce fn = entry.second;
+    r.add(std::string("Math.Functions.") + entry.first, [fn](NativeCall& c, Args a) { return real(fn(c.reals(a[0]))); });
   }
   r.add("Math.Functions.arctan2", [](NativeCall&, Args a) { return real(arctan2(a[0].as_real(), a[1].as_real())); });
   r.add("Math.Functions.pow", [](NativeCall&, Args a) { return real(natives::pow(a[0].as_real(), a[1].as_real())); });
