@@ -12,6 +12,8 @@ namespace {
 
 // Deep enough for any real model (MuJoCo stops near 100 levels); a recursive model hits it quickly.
 constexpr uint32_t kMaxInstanceDepth = 1000;
+// How often one attribute declaration may nest inside itself along an ownership chain.
+constexpr uint32_t kMaxDeclarationRepeats = 8;
 // Attributes whose values depend on each other in a chain this long would overflow the stack.
 constexpr int kMaxEvalDepth = 1000;
 
@@ -489,14 +491,23 @@ Value Evaluator::owned_default(ObjectId id, Slot& slot) {
     return Value::error();
   }
   if (model->is_const) return Value::of_object(singleton(model));  // an alias of the singleton
-  if (graph_.at(id).depth + 1 > kMaxInstanceDepth) {
+  // A model that owns an instance of itself by default never ends. Owners may stop the recursion by
+  // assigning a reference a few levels down, so allow a handful of repeats of one declaration.
+  uint32_t repeats = 0;
+  for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) {
+    repeats += graph_.at(cur).created_by == slot.declaration;
+  }
+  if (repeats >= kMaxDeclarationRepeats || graph_.at(id).depth + 1 > kMaxInstanceDepth) {
     sink_.report(DiagCode::EvaluationTooDeep, slot.declaration->member->range,
-                 "the instance tree is deeper than " + std::to_string(kMaxInstanceDepth) +
-                     " levels at " + slot_path(id, slot.name) + "; does " + model->qualified + " contain itself?");
+                 "the instance tree does not end at " + slot_path(id, slot.name) + ": " + model->qualified +
+                     " seems to contain itself (" + std::to_string(repeats) + " nested instances of `" +
+                     std::string(slot.name) + "`)");
     return Value::error();
   }
   const std::string name(slot.name);
-  return Value::of_object(new_object(model, id, name));
+  const ObjectId child = new_object(model, id, name);
+  graph_.at(child).created_by = slot.declaration;
+  return Value::of_object(child);
 }
 
 Value Evaluator::global_value(GlobalInfo* global) {

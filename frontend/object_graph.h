@@ -52,6 +52,7 @@ struct Object {
   ObjectId owner = kNoObject;
   std::string name;  // attribute name in the owner; the model name for roots and const singletons
   uint32_t depth = 0;
+  const Entry* created_by = nullptr;  // the declaration of the owning attribute, for owned defaults
   bool is_const_singleton = false;
   std::vector<Slot> slots;
   std::unordered_map<std::string_view, uint32_t> index;
