@@ -40,6 +40,9 @@ std::string_view severity_name(Severity severity) {
 }
 
 Diagnostic& DiagnosticSink::report(DiagCode code, SourceRange range, std::string message) {
+  auto key = std::make_tuple(static_cast<uint16_t>(code), range.file, range.begin, message);
+  if (auto it = seen_.find(key); it != seen_.end()) return diagnostics_[it->second];
+  seen_.emplace(std::move(key), diagnostics_.size());
   Severity severity = default_severity(code);
   if (strict_ && severity == Severity::Warning) severity = Severity::Error;
   if (severity == Severity::Error) ++error_count_;
@@ -49,6 +52,7 @@ Diagnostic& DiagnosticSink::report(DiagCode code, SourceRange range, std::string
 
 void DiagnosticSink::clear() {
   diagnostics_.clear();
+  seen_.clear();
   error_count_ = 0;
 }
 
@@ -59,6 +63,10 @@ void DiagnosticSink::sort_by_position(size_t first) {
                      if (a.range.file != b.range.file) return a.range.file < b.range.file;
                      return a.range.begin < b.range.begin;
                    });
+  for (size_t i = first; i < diagnostics_.size(); ++i) {  // positions in the vector changed
+    const Diagnostic& d = diagnostics_[i];
+    seen_[std::make_tuple(static_cast<uint16_t>(d.code), d.range.file, d.range.begin, d.message)] = i;
+  }
 }
 
 void print_diagnostic(std::ostream& out, const SourceManager& sources, const Diagnostic& diag) {

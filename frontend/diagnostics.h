@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <map>
+#include <tuple>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +39,8 @@ class DiagnosticSink {
   // With `strict`, warnings are reported as errors (the `--strict` flag).
   explicit DiagnosticSink(bool strict = false) : strict_(strict) {}
 
+  // A diagnostic with the same code, place and message as an earlier one is not repeated (a type name
+  // resolved for every instance of a model would otherwise warn once per instance).
   Diagnostic& report(DiagCode code, SourceRange range, std::string message);
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
   size_t error_count() const { return error_count_; }
@@ -50,6 +54,7 @@ class DiagnosticSink {
   bool strict_;
   size_t error_count_ = 0;
   std::vector<Diagnostic> diagnostics_;
+  std::map<std::tuple<uint16_t, FileId, uint32_t, std::string>, size_t> seen_;
 };
 
 // Prints every diagnostic in report order, at most `max_errors` errors (then one `too-many-errors` note).

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <unordered_set>
 
+#include "frontend/deprecations.h"
 #include "frontend/natives/builtin_natives.h"
 #include "frontend/value_format.h"
 
@@ -136,6 +137,7 @@ Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_vi
                                 bool include_declarations) {
   // Assignments anywhere beat declaration defaults; among them the level nearest the root, then the most
   // derived model of that level's type.
+  const Object& target = graph_.at(levels.back().object);
   for (int pass = 0; pass < (include_declarations ? 2 : 1); ++pass) {
     for (uint32_t i = 0; i < levels.size(); ++i) {
       const Object& level = graph_.at(levels[i].object);
@@ -144,7 +146,7 @@ Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_vi
         if (it == model->by_parent.end()) continue;
         for (uint32_t index : it->second) {
           const Entry& e = model->entries[index];
-          if (e.path.back() != slot) continue;
+          if (e.path.back() != slot && !is_renamed_to(target, e.path.back(), slot)) continue;
           const bool match = pass == 0 ? e.kind == kind
                                        : (e.kind == Entry::Kind::Declare && e.value.has_value());
           if (match) return Binding{&e, model, levels[i].object, i};
@@ -153,6 +155,11 @@ Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_vi
     }
   }
   return {};
+}
+
+bool Evaluator::is_renamed_to(const Object& object, std::string_view written, std::string_view slot) {
+  std::optional<std::string_view> current = renamed_attribute(written);
+  return current && *current == slot && !object.index.count(written);
 }
 
 bool Evaluator::touched_below(const std::vector<Level>& levels, std::string_view slot) const {
@@ -240,6 +247,12 @@ void Evaluator::build_slots(ObjectId id) {
         const Entry& e = model->entries[index];
         if (e.kind == Entry::Kind::Annotation || e.kind == Entry::Kind::WithTrait) continue;
         if (obj.index.count(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
+        if (std::optional<std::string_view> current = renamed_attribute(e.path.back());
+            current && obj.index.count(*current)) {
+          sink_.report(DiagCode::DeprecatedName, e.member->path.range,
+                       "`" + std::string(e.path.back()) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
+          continue;
+        }
         std::vector<std::string> names;
         for (const Slot& s : obj.slots) names.emplace_back(s.name);
         std::string message = "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
@@ -681,7 +694,7 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
         }
         return entity;
       case Entity::Kind::Namespace: {
-        Symbol symbol = program_.lookup_in(target.ns, e.text);
+        Symbol symbol = program_.lookup_in(target.ns, e.text, &e.range);
         if (!symbol) {
           std::vector<std::string> candidates;
           for (const auto& [n, s] : target.ns->symbols) candidates.push_back(n);
@@ -717,6 +730,12 @@ Value Evaluator::member_of(const Value& object, std::string_view name, SourceRan
   }
   const Object& obj = graph_.at(object.object);
   auto it = obj.index.find(name);
+  if (std::optional<std::string_view> current = renamed_attribute(name);
+      it == obj.index.end() && current && obj.index.count(*current)) {
+    sink_.report(DiagCode::DeprecatedName, where,
+                 "`" + std::string(name) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
+    it = obj.index.find(*current);
+  }
   if (it == obj.index.end()) {
     std::vector<std::string> names;
     for (const Slot& s : obj.slots) names.emplace_back(s.name);
@@ -1056,6 +1075,10 @@ Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::op
                 "argument `" + std::string(m.params[i].name.text) + "` of " + name);
     if (v.is_error()) return v;
     values.push_back(std::move(v));
+  }
+  if (std::optional<std::string_view> current = renamed_method(qualified)) {
+    sink_.report(DiagCode::DeprecatedName, where,
+                 "`" + qualified + "` is the pre-0.10 name; use `" + std::string(*current) + "`");
   }
   const NativeFunction* fn = NativeRegistry::global().find(qualified);
   if (!fn) {

@@ -107,6 +107,8 @@ class Evaluator {
   Binding find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
                        bool include_declarations);
   bool touched_below(const std::vector<Level>& levels, std::string_view slot) const;
+  // An entry written with a 0.17.8 attribute name (`charges`) that binds this slot (`connectors`).
+  static bool is_renamed_to(const Object& object, std::string_view written, std::string_view slot);
   void evaluate_slot(ObjectId id, uint32_t slot_index);
   Value owned_default(ObjectId id, Slot& slot);
   void adopt(ObjectId child, ObjectId owner, const std::string& name, uint32_t level);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "frontend/deprecations.h"
 #include "frontend/import_plugins.h"
 #include "frontend/parser.h"
 
@@ -65,7 +66,17 @@ void Program::set_bundles(std::vector<BundleConfig> bundles) {
 const BundleConfig* Program::add_bundle(BundleConfig bundle) {
   if (Namespace* existing = bundle_root(bundle.name)) return existing->bundle;
   const BundleConfig& stored = bundles_.emplace_back(std::move(bundle));
-  bundle_roots_[stored.name] = new_namespace(stored.name, nullptr, stored.dir, &stored);
+  Namespace* root = new_namespace(stored.name, nullptr, stored.dir, &stored);
+  bundle_roots_[stored.name] = root;
+  // The 0.17.8 `Charges` namespaces live on as aliases of the models' current homes.
+  for (std::string_view old : renamed_namespaces()) {
+    const size_t dot = old.find('.');
+    if (old.substr(0, dot) != stored.name) continue;
+    const std::string child(old.substr(dot + 1));
+    Namespace* legacy = new_namespace(child, root, "", &stored);
+    legacy->legacy = true;
+    root->children[child] = legacy;
+  }
   return &stored;
 }
 
@@ -271,7 +282,16 @@ bool Program::bundle_visible(DocumentInfo* from, const BundleConfig* target) con
   return false;
 }
 
-Symbol Program::lookup_in(Namespace* ns, std::string_view name) {
+Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRange* where) {
+  if (ns->legacy) {
+    std::optional<std::string> current = renamed_model(ns->qualified, name);
+    ModelInfo* model = current ? builtin_model(*current) : nullptr;
+    if (model && where) {
+      sink_.report(DiagCode::DeprecatedName, *where,
+                   "`" + ns->qualified + "." + std::string(name) + "` is the 0.17.8 name; use `" + *current + "`");
+    }
+    return model ? Symbol{model} : Symbol{};
+  }
   load_namespace(ns);
   if (auto it = ns->symbols.find(name); it != ns->symbols.end()) return it->second;
   if (auto it = ns->children.find(name); it != ns->children.end()) return Symbol{nullptr, nullptr, it->second};
@@ -334,7 +354,7 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
       return {};
     }
     Namespace* ns = s.ns;
-    s = lookup_in(ns, name.parts[i].text);
+    s = lookup_in(ns, name.parts[i].text, report ? &name.range : nullptr);
     if (!s && report) {
       std::vector<std::string> candidates;
       for (const auto& [n, sym] : ns->symbols) candidates.push_back(n);

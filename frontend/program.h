@@ -59,6 +59,7 @@ struct Namespace {
   bool loaded = false;
   std::map<std::string, Namespace*, std::less<>> children;
   std::map<std::string, Symbol, std::less<>> symbols;
+  bool legacy = false;  // a 0.17.8 namespace whose models moved (see deprecations.h)
 };
 
 // One member of a model body, flattened: nested blocks become entries whose path starts with the
@@ -130,8 +131,9 @@ class Program {
   // `extra` adds candidates (the scope's attribute names) to the "did you mean" of an unknown name.
   Symbol lookup(DocumentInfo* doc, std::string_view name, SourceRange where, bool report = true,
                 const std::vector<std::string>* extra = nullptr);
-  // A member of a namespace (loads it on first use).
-  Symbol lookup_in(Namespace* ns, std::string_view name);
+  // A member of a namespace (loads it on first use). With `where`, a 0.17.8 name is reported there as
+  // deprecated.
+  Symbol lookup_in(Namespace* ns, std::string_view name, const SourceRange* where = nullptr);
   // Resolves a qualified name (type names: no members).
   Symbol lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report = true);
   ModelInfo* resolve_model_name(DocumentInfo* doc, const QualifiedName& name, bool report = true);
