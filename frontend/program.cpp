@@ -44,7 +44,17 @@ bool ModelInfo::is_subtype_of(const ModelInfo* other) const {
   return std::find(linearization.begin(), linearization.end(), other) != linearization.end();
 }
 
-Program::Program(SourceManager& sources, DiagnosticSink& sink) : sources_(sources), sink_(sink) {}
+// spec §15.1: the schema of a bundle's config.openplx.
+constexpr const char* kBuiltins =
+    "BundleConfig:\n"
+    "    name is String\n"
+    "    version is String: \"\"\n"
+    "    dependencies is String[]: []\n";
+
+Program::Program(SourceManager& sources, DiagnosticSink& sink) : sources_(sources), sink_(sink) {
+  builtins_ = new_namespace("", nullptr, "", nullptr);
+  load_document(sources_.add("<builtin>", kBuiltins), builtins_, nullptr);
+}
 Program::~Program() = default;
 
 Namespace* Program::new_namespace(std::string name, Namespace* parent, std::string dir,
@@ -313,6 +323,7 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
       if (Symbol s = lookup_in(root, name)) return s;
     }
   }
+  if (Symbol s = lookup_in(builtins_, name)) return s;
   if (Namespace* root = bundle_root(name)) {
     if (bundle_visible(doc, root->bundle)) {
       for (const BundleDependency& dep : doc->bundle ? doc->bundle->dependencies : std::vector<BundleDependency>{}) {

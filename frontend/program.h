@@ -160,6 +160,7 @@ class Program {
 
   SourceManager& sources_;
   DiagnosticSink& sink_;
+  Namespace* builtins_ = nullptr;  // models every file sees without a bundle (BundleConfig)
   std::deque<BundleConfig> bundles_;  // stable addresses: namespaces and documents point at them
   std::map<std::string, Namespace*, std::less<>> bundle_roots_;
   std::deque<Namespace> namespaces_;
