@@ -157,6 +157,57 @@ Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_vi
   return {};
 }
 
+std::vector<Binding> Evaluator::find_all_becomes(const std::vector<Level>& levels, std::string_view slot) {
+  // Every `becomes` of the winning level: traits of one model may each specialise the same attribute.
+  std::vector<Binding> found;
+  for (uint32_t i = 0; i < levels.size() && found.empty(); ++i) {
+    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
+      auto it = model->by_parent.find(levels[i].rel);
+      if (it == model->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        const Entry& e = model->entries[index];
+        if (e.kind == Entry::Kind::Becomes && e.path.back() == slot) found.push_back({&e, model, levels[i].object, i});
+      }
+    }
+  }
+  return found;
+}
+
+Type Evaluator::merged_becomes_type(const std::vector<Binding>& all) {
+  Type merged = resolve_type(all.front().model->doc, all.front().entry->member->type);
+  for (size_t k = 1; k < all.size() && merged.kind == TypeKind::Model; ++k) {
+    Type other = resolve_type(all[k].model->doc, all[k].entry->member->type);
+    if (other.kind != TypeKind::Model || other.is_array != merged.is_array) continue;
+    if (merged.model->is_subtype_of(other.model)) continue;
+    if (other.model->is_subtype_of(merged.model)) {
+      merged = other;
+      continue;
+    }
+    // `X with A` and `X with B` meet in `X with A, B` (the more derived base, all the traits).
+    auto split = [](ModelInfo* m, std::vector<ModelInfo*>& traits) {
+      if (m->decl || !m->base) return m;
+      traits.insert(traits.end(), m->traits.begin(), m->traits.end());
+      return m->base;
+    };
+    std::vector<ModelInfo*> traits;
+    ModelInfo* a = split(merged.model, traits);
+    ModelInfo* b = split(other.model, traits);
+    ModelInfo* base = a->is_subtype_of(b) ? a : (b->is_subtype_of(a) ? b : nullptr);
+    if (!base) {
+      sink_.report(DiagCode::IncompatibleBecomes, all[k].entry->member->type.range,
+                   "Type " + other.describe() + " is not compatible with " + merged.describe() +
+                       ", which another `becomes` of the same attribute chose");
+      return {};
+    }
+    std::vector<ModelInfo*> unique;
+    for (ModelInfo* t : traits) {
+      if (std::find(unique.begin(), unique.end(), t) == unique.end()) unique.push_back(t);
+    }
+    merged.model = program_.make_trait_extension(base, std::move(unique));
+  }
+  return merged;
+}
+
 bool Evaluator::is_renamed_to(const Object& object, std::string_view written, std::string_view slot) {
   std::optional<std::string_view> current = renamed_attribute(written);
   return current && *current == slot && !object.index.count(written);
@@ -269,10 +320,11 @@ void Evaluator::build_slots(ObjectId id) {
     const Entry& decl = *slot.declaration;
     slot.declared_type = resolve_type(slot.declared_in->doc, decl.member->type);
     slot.type = slot.declared_type;
-    Binding becomes = find_binding(levels, slot.name, Entry::Kind::Becomes, false);
-    if (becomes.entry) {
+    std::vector<Binding> all_becomes = find_all_becomes(levels, slot.name);
+    if (!all_becomes.empty()) {
+      const Binding& becomes = all_becomes.front();
       slot.becomes = becomes;
-      Type narrowed = resolve_type(becomes.model->doc, becomes.entry->member->type);
+      Type narrowed = merged_becomes_type(all_becomes);
       const Type& old = slot.declared_type;
       bool compatible = false;
       if (old.is_primitive() && old.kind != TypeKind::Error) {
@@ -437,13 +489,15 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   if (type.kind == TypeKind::Error) {
     result = Value::error();
   } else if (!slot->binding.entry) {
-    if (type.is_array) {
+    if (slot->optional) {
+      // stays unset, whatever its type (spec §5.1)
+    } else if (type.is_array) {
       result = Value::of_array({});  // an array nobody assigned is empty
     } else if (type.kind == TypeKind::Model) {
       result = owned_default(id, *slot);
       slot = &graph_.at(id).slots[slot_index];
       owns = result.kind == Value::Kind::Object && graph_.at(result.object).owner == id;
-    } else if (!slot->optional) {
+    } else {
       sink_.report(DiagCode::MissingAssignment, slot->declaration->member->range,
                    "Missing assignment " + slot_path(id, slot->name) + ", owning model is not complete");
       result = Value::error();

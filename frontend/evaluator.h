@@ -107,6 +107,8 @@ class Evaluator {
   Binding find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
                        bool include_declarations);
   bool touched_below(const std::vector<Level>& levels, std::string_view slot) const;
+  std::vector<Binding> find_all_becomes(const std::vector<Level>& levels, std::string_view slot);
+  Type merged_becomes_type(const std::vector<Binding>& all);
   // An entry written with a 0.17.8 attribute name (`charges`) that binds this slot (`connectors`).
   static bool is_renamed_to(const Object& object, std::string_view written, std::string_view slot);
   void evaluate_slot(ObjectId id, uint32_t slot_index);

@@ -41,7 +41,16 @@ size_t edit_distance(std::string_view a, std::string_view b) {
 
 bool ModelInfo::is_subtype_of(const ModelInfo* other) const {
   if (this == other) return true;
-  return std::find(linearization.begin(), linearization.end(), other) != linearization.end();
+  if (std::find(linearization.begin(), linearization.end(), other) != linearization.end()) return true;
+  // `Base with T1, T2` names no model of its own: any subtype of Base that includes T1 and T2 fits.
+  if (!other->decl && other->base) {
+    if (!is_subtype_of(other->base)) return false;
+    for (const ModelInfo* trait : other->traits) {
+      if (!is_subtype_of(trait)) return false;
+    }
+    return true;
+  }
+  return false;
 }
 
 // spec §15.1: the schema of a bundle's config.openplx.

@@ -8,7 +8,10 @@ namespace openplx::natives {
 
 void register_builtin_natives() {
   static std::once_flag once;
-  std::call_once(once, [] { register_math_natives(frontend::NativeRegistry::global()); });
+  std::call_once(once, [] {
+    register_math_natives(frontend::NativeRegistry::global());
+    register_bundle_natives(frontend::NativeRegistry::global());
+  });
 }
 
 }  // namespace openplx::natives

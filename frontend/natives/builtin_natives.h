@@ -9,6 +9,7 @@ class NativeRegistry;
 namespace openplx::natives {
 
 void register_math_natives(frontend::NativeRegistry& registry);
+void register_bundle_natives(frontend::NativeRegistry& registry);
 // Registers every bundle's natives into NativeRegistry::global() once (thread-safe).
 void register_builtin_natives();
 

@@ -2,6 +2,7 @@
 // math_rotation, math_matrix and math_scalar. Each binding only converts between OpenPLX values and Eigen.
 #include <Eigen/Dense>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "frontend/evaluator.h"
@@ -253,6 +254,8 @@ void add_functions(NativeRegistry& r) {
     Reduce fn = entry.second;
     r.add(std::string("Math.Functions.") + entry.first, [fn](NativeCall& c, Args a) { return real(fn(c.reals(a[0]))); });
   }
+  r.add("Math.Functions.ceil", [](NativeCall&, Args a) { return real(std::ceil(a[0].as_real())); });
+  r.add("Math.Functions.floor", [](NativeCall&, Args a) { return real(std::floor(a[0].as_real())); });
   r.add("Math.Functions.arctan2", [](NativeCall&, Args a) { return real(arctan2(a[0].as_real(), a[1].as_real())); });
   r.add("Math.Functions.pow", [](NativeCall&, Args a) { return real(natives::pow(a[0].as_real(), a[1].as_real())); });
   r.add("Math.Functions.equals_approx",
