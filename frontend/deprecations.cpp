@@ -34,6 +34,11 @@ constexpr std::array kMoves = {
     Move{"Physics3D.Charges", "TriMeshGeometry", "Physics3D.Geometries.TriMeshGeometry"},
     Move{"Physics3D.Charges", "TriMesh", "Physics3D.Geometries.TriMesh"},
     Move{"Physics3D.Charges", "ExternalTriMeshGeometry", "Physics3D.Geometries.ExternalTriMeshGeometry"},
+    // Moved out of namespaces that still exist.
+    Move{"Physics.Signals", "Torque3DOutput", "Physics3D.Signals.Torque3DOutput"},
+    Move{"Physics.Signals", "Torque3DOutputTrait", "Physics3D.Signals.Torque3DOutputTrait"},
+    Move{"Physics.Signals", "Force3DOutput", "Physics3D.Signals.Force3DOutput"},
+    Move{"Physics.Signals", "Force3DOutputTrait", "Physics3D.Signals.Force3DOutputTrait"},
 };
 
 constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kMethods = {{
@@ -54,6 +59,7 @@ std::optional<std::string> renamed_model(std::string_view old_namespace, std::st
 std::vector<std::string_view> renamed_namespaces() {
   std::vector<std::string_view> out;
   for (const Move& move : kMoves) {
+    if (move.old_namespace.find(".Charges") == std::string_view::npos) continue;  // the ones that vanished
     if (out.empty() || out.back() != move.old_namespace) out.push_back(move.old_namespace);
   }
   return out;

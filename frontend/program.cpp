@@ -302,19 +302,19 @@ bool Program::bundle_visible(DocumentInfo* from, const BundleConfig* target) con
 }
 
 Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRange* where) {
-  if (ns->legacy) {
-    std::optional<std::string> current = renamed_model(ns->qualified, name);
-    ModelInfo* model = current ? builtin_model(*current) : nullptr;
-    if (model && where) {
-      sink_.report(DiagCode::DeprecatedName, *where,
-                   "`" + ns->qualified + "." + std::string(name) + "` is the 0.17.8 name; use `" + *current + "`");
-    }
-    return model ? Symbol{model} : Symbol{};
+  if (!ns->legacy) {
+    load_namespace(ns);
+    if (auto it = ns->symbols.find(name); it != ns->symbols.end()) return it->second;
+    if (auto it = ns->children.find(name); it != ns->children.end()) return Symbol{nullptr, nullptr, it->second};
   }
-  load_namespace(ns);
-  if (auto it = ns->symbols.find(name); it != ns->symbols.end()) return it->second;
-  if (auto it = ns->children.find(name); it != ns->children.end()) return Symbol{nullptr, nullptr, it->second};
-  return {};
+  // A model of the 0.17.8 API that moved: found at its current home, with a warning naming it.
+  std::optional<std::string> current = renamed_model(ns->qualified, name);
+  ModelInfo* model = current ? builtin_model(*current) : nullptr;
+  if (model && where) {
+    sink_.report(DiagCode::DeprecatedName, *where,
+                 "`" + ns->qualified + "." + std::string(name) + "` is the 0.17.8 name; use `" + *current + "`");
+  }
+  return model ? Symbol{model} : Symbol{};
 }
 
 Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange where, bool report,
