@@ -1029,7 +1029,8 @@ Value Evaluator::apply_operator(char op, const std::vector<Value>& operands, Sou
     args.push_back(convert(operands[i], params[i], where, std::string("operand of ") + op));
   }
   NativeCall call(*this, where);
-  return (*fn)(call, args);
+  Value result = (*fn)(call, args);
+  return call.poisoned() ? Value::error() : result;
 }
 
 const MethodInfo* Evaluator::find_method(ModelInfo* model, std::string_view name, ModelInfo** owner) {
@@ -1141,6 +1142,7 @@ Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::op
   }
   NativeCall call(*this, where);
   Value result = (*fn)(call, values);
+  if (call.poisoned()) return Value::error();
   const Type ret = resolve_type_ref(owner->doc, *m.return_type);
   return convert(std::move(result), ret, where, "the result of " + qualified);
 }
@@ -1151,19 +1153,28 @@ double NativeCall::real(const Value& v) { return v.as_real(); }
 
 std::vector<double> NativeCall::reals(const Value& array) {
   std::vector<double> out;
+  if (array.kind != Value::Kind::Array) poisoned_ = true;
   for (const Value& v : array.array) out.push_back(v.as_real());
   return out;
 }
 
+bool NativeCall::is_object(const Value& v) {
+  if (v.kind == Value::Kind::Object) return true;
+  poisoned_ = true;
+  return false;
+}
+
 Value NativeCall::object(const Value& of, std::string_view attribute) {
-  const Value* v = evaluator_.value(of.object, attribute);
+  const Value* v = is_object(of) ? evaluator_.value(of.object, attribute) : nullptr;
+  if (!v || v->is_error()) poisoned_ = true;
   return v ? *v : Value::error();
 }
 
 std::vector<double> NativeCall::fields(const Value& object, std::initializer_list<std::string_view> names) {
   std::vector<double> out;
   for (std::string_view name : names) {
-    const Value* v = evaluator_.value(object.object, name);
+    const Value* v = is_object(object) ? evaluator_.value(object.object, name) : nullptr;
+    if (!v || !v->is_number()) poisoned_ = true;
     out.push_back(v && v->is_number() ? v->as_real() : std::nan(""));
   }
   return out;

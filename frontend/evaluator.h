@@ -37,10 +37,15 @@ class NativeCall {
   Value make(std::string_view model, std::initializer_list<std::pair<std::string_view, double>> fields);
   Value make_with(std::string_view model, std::initializer_list<std::pair<std::string_view, Value>> fields);
   Value fail(const std::string& message);  // reports at the call and returns an error value
+  // True when an input turned out to be an error value (already reported); the result is then discarded.
+  bool poisoned() const { return poisoned_; }
 
  private:
+  bool is_object(const Value& v);
+
   Evaluator& evaluator_;
   SourceRange where_;
+  bool poisoned_ = false;
 };
 
 using NativeFunction = std::function<Value(NativeCall&, std::span<const Value>)>;
