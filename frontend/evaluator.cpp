@@ -1065,6 +1065,8 @@ Value Evaluator::eval_call(const Expr& call, const Scope& scope) {
     if (target.kind == Entity::Kind::Model) {
       if (!program_.resolve(target.model)) return Value::error();
       type = target.model;
+      // A const model's name is also its one instance: `Steel.is_default_material()`.
+      if (target.model->is_const) self = Value::of_object(singleton(target.model));
     } else if (target.kind == Entity::Kind::Namespace) {
       sink_.report(DiagCode::UnknownMethod, callee.range,
                    "`" + target.ns->qualified + "." + std::string(name) + "` is not a method");
