@@ -71,7 +71,8 @@ std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceMan
   }
   const SourceRange file_start{*id, file.content_begin(), file.content_begin()};
   if (!config) {
-    sink.report(DiagCode::InvalidBundleConfig, file_start, "bundle config must declare `config is BundleConfig:`");
+    sink.report(DiagCode::InvalidBundleConfig, file_start,
+                "bundle config must declare `config is BundleConfig:`");
     return std::nullopt;
   }
   BundleConfig result;
@@ -93,7 +94,8 @@ std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceMan
   if (const Member* deps = find_assignment(*config, "dependencies")) {
     const Expr& e = doc.expr(*deps->value);
     if (e.kind != ExprKind::Array) {
-      sink.report(DiagCode::InvalidBundleConfig, e.range, "bundle `dependencies` must be an array of strings");
+      sink.report(DiagCode::InvalidBundleConfig, e.range,
+                  "bundle `dependencies` must be an array of strings");
     } else {
       for (ExprId item : e.operands) {
         const Expr& dep = doc.expr(item);
@@ -114,7 +116,8 @@ std::vector<std::string> bundle_search_path(const std::vector<std::string>& extr
   const fs::path installed = executable_dir() / "../share/openplx2mjcf/bundles";
   if (fs::is_directory(installed, ec)) {
     path.push_back(normalised(installed));
-  } else if (std::string source = OPENPLX_SOURCE_BUNDLES_DIR; !source.empty() && fs::is_directory(source, ec)) {
+  } else if (std::string source = OPENPLX_SOURCE_BUNDLES_DIR;
+             !source.empty() && fs::is_directory(source, ec)) {
     path.push_back(normalised(source));
   }
   if (const char* env = std::getenv("OPENPLX_BUNDLE_PATH")) {
@@ -131,8 +134,8 @@ std::vector<std::string> bundle_search_path(const std::vector<std::string>& extr
   return path;
 }
 
-std::vector<BundleConfig> discover_bundles(const std::vector<std::string>& search_path, SourceManager& sources,
-                                           DiagnosticSink& sink) {
+std::vector<BundleConfig> discover_bundles(const std::vector<std::string>& search_path,
+                                           SourceManager& sources, DiagnosticSink& sink) {
   std::vector<BundleConfig> bundles;
   std::set<std::string> names;
   auto add = [&](const fs::path& dir) {

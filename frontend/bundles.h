@@ -28,14 +28,15 @@ struct BundleConfig {
 };
 
 // Reads `dir/config.openplx`. Problems are reported to `sink` at the config file's lines.
-std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceManager& sources, DiagnosticSink& sink);
+std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceManager& sources,
+                                               DiagnosticSink& sink);
 
 // The folders searched for bundles, in order: project bundles, OPENPLX_BUNDLE_PATH, then `extra_dirs`.
 std::vector<std::string> bundle_search_path(const std::vector<std::string>& extra_dirs);
 
 // Every bundle under the search path (first of each name wins).
-std::vector<BundleConfig> discover_bundles(const std::vector<std::string>& search_path, SourceManager& sources,
-                                           DiagnosticSink& sink);
+std::vector<BundleConfig> discover_bundles(const std::vector<std::string>& search_path,
+                                           SourceManager& sources, DiagnosticSink& sink);
 
 // The enclosing bundle folder of `file` (the nearest ancestor folder with config.openplx), if any.
 std::optional<std::string> enclosing_bundle_dir(const std::string& file);

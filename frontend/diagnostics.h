@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <iosfwd>
 #include <map>
-#include <tuple>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "frontend/source.h"

@@ -23,11 +23,16 @@ std::string join_key(const std::string& rel, std::string_view slot) {
 }
 
 bool is_primitive_name(std::string_view name, TypeKind& kind) {
-  if (name == "Real") kind = TypeKind::Real;
-  else if (name == "Int") kind = TypeKind::Int;
-  else if (name == "Bool") kind = TypeKind::Bool;
-  else if (name == "String") kind = TypeKind::String;
-  else return false;
+  if (name == "Real")
+    kind = TypeKind::Real;
+  else if (name == "Int")
+    kind = TypeKind::Int;
+  else if (name == "Bool")
+    kind = TypeKind::Bool;
+  else if (name == "String")
+    kind = TypeKind::String;
+  else
+    return false;
   return true;
 }
 
@@ -38,12 +43,24 @@ bool is_primitive_name(std::string_view name, TypeKind& kind) {
 std::string Type::describe() const {
   std::string out;
   switch (kind) {
-    case TypeKind::Error: out = "<error>"; break;
-    case TypeKind::Int: out = "Int"; break;
-    case TypeKind::Real: out = "Real"; break;
-    case TypeKind::Bool: out = "Bool"; break;
-    case TypeKind::String: out = "String"; break;
-    case TypeKind::Model: out = model->qualified; break;
+    case TypeKind::Error:
+      out = "<error>";
+      break;
+    case TypeKind::Int:
+      out = "Int";
+      break;
+    case TypeKind::Real:
+      out = "Real";
+      break;
+    case TypeKind::Bool:
+      out = "Bool";
+      break;
+    case TypeKind::String:
+      out = "String";
+      break;
+    case TypeKind::Model:
+      out = model->qualified;
+      break;
     case TypeKind::Union:
       for (size_t i = 0; i < alternatives.size(); ++i) out += (i ? " or " : "") + alternatives[i].describe();
       break;
@@ -147,8 +164,8 @@ Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_vi
         for (uint32_t index : it->second) {
           const Entry& e = model->entries[index];
           if (e.path.back() != slot && !is_renamed_to(target, e.path.back(), slot)) continue;
-          const bool match = pass == 0 ? e.kind == kind
-                                       : (e.kind == Entry::Kind::Declare && e.value.has_value());
+          const bool match =
+              pass == 0 ? e.kind == kind : (e.kind == Entry::Kind::Declare && e.value.has_value());
           if (match) return Binding{&e, model, levels[i].object, i};
         }
       }
@@ -166,7 +183,8 @@ std::vector<Binding> Evaluator::find_all_becomes(const std::vector<Level>& level
       if (it == model->by_parent.end()) continue;
       for (uint32_t index : it->second) {
         const Entry& e = model->entries[index];
-        if (e.kind == Entry::Kind::Becomes && e.path.back() == slot) found.push_back({&e, model, levels[i].object, i});
+        if (e.kind == Entry::Kind::Becomes && e.path.back() == slot)
+          found.push_back({&e, model, levels[i].object, i});
       }
     }
   }
@@ -300,18 +318,20 @@ void Evaluator::build_slots(ObjectId id) {
         if (obj.index.count(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
         if (std::optional<std::string_view> current = renamed_attribute(e.path.back());
             current && obj.index.count(*current)) {
-          sink_.report(DiagCode::DeprecatedName, e.member->path.range,
-                       "`" + std::string(e.path.back()) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
+          sink_.report(
+              DiagCode::DeprecatedName, e.member->path.range,
+              "`" + std::string(e.path.back()) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
           continue;
         }
         std::vector<std::string> names;
         for (const Slot& s : obj.slots) names.emplace_back(s.name);
-        std::string message = "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
+        std::string message =
+            "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
         std::string near = Program::suggestion(e.path.back(), names);
         if (!near.empty()) message += "; did you mean `" + near + "`?";
         const QualifiedName& path = e.member->path;
-        sink_.report(DiagCode::UnknownAttribute, path.parts.empty() ? e.member->range : path.parts.back().range,
-                     message);
+        sink_.report(DiagCode::UnknownAttribute,
+                     path.parts.empty() ? e.member->range : path.parts.back().range, message);
       }
     }
   }
@@ -335,7 +355,8 @@ void Evaluator::build_slots(ObjectId id) {
         compatible = narrowed.is_array == old.is_array && narrowed.model->is_subtype_of(old.model);
       } else if (narrowed.kind == TypeKind::Model && old.kind == TypeKind::Union) {
         for (const Type& alt : old.alternatives) {
-          compatible = compatible || (alt.kind == TypeKind::Model && narrowed.model->is_subtype_of(alt.model));
+          compatible =
+              compatible || (alt.kind == TypeKind::Model && narrowed.model->is_subtype_of(alt.model));
         }
       }
       if (!compatible && narrowed.kind != TypeKind::Error && old.kind != TypeKind::Error) {
@@ -369,14 +390,17 @@ void Evaluator::build_slots(ObjectId id) {
 ObjectId Evaluator::instantiate_root(ModelInfo* model) {
   if (!program_.resolve(model)) return kNoObject;
   if (model->is_trait) {
-    sink_.report(DiagCode::CannotInstantiateTrait, model->decl->name.range, "Cannot instantiate trait " + model->name);
+    sink_.report(DiagCode::CannotInstantiateTrait, model->decl->name.range,
+                 "Cannot instantiate trait " + model->name);
     return kNoObject;
   }
   graph_.root = new_object(model, kNoObject, model->name);
   return graph_.root;
 }
 
-ObjectId Evaluator::make_free_object(ModelInfo* model) { return new_object(model, kNoObject, model->name); }
+ObjectId Evaluator::make_free_object(ModelInfo* model) {
+  return new_object(model, kNoObject, model->name);
+}
 
 void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
   Object& obj = graph_.at(object);
@@ -464,10 +488,11 @@ const Value* Evaluator::value(ObjectId object, std::string_view slot) {
 void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   Slot* slot = &graph_.at(id).slots[slot_index];
   if (slot->state == Slot::State::Done) return;
-  const SourceRange where = slot->binding.entry ? slot->binding.entry->member->range
-                                                : slot->declaration->member->range;
+  const SourceRange where =
+      slot->binding.entry ? slot->binding.entry->member->range : slot->declaration->member->range;
   if (slot->state == Slot::State::Evaluating) {
-    sink_.report(DiagCode::CyclicDependency, where, "Cyclic dependency detected at " + slot_path(id, slot->name));
+    sink_.report(DiagCode::CyclicDependency, where,
+                 "Cyclic dependency detected at " + slot_path(id, slot->name));
     slot->value = Value::error();
     slot->state = Slot::State::Done;
     return;
@@ -528,8 +553,9 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
         const Entry& e = model->entries[it->second];
         if (e.kind == Entry::Kind::Annotation) continue;
         if (result.kind == Value::Kind::Object && graph_.at(result.object).is_const_singleton) {
-          sink_.report(DiagCode::ConstAssignment, e.member->range,
-                       "Cannot assign to attribute of const model " + graph_.at(result.object).type->qualified);
+          sink_.report(
+              DiagCode::ConstAssignment, e.member->range,
+              "Cannot assign to attribute of const model " + graph_.at(result.object).type->qualified);
         } else if (result.kind == Value::Kind::Object) {
           sink_.report(DiagCode::AssignThroughReference, e.member->range,
                        "Cannot assign through reference " + std::string(slot->name));
@@ -581,7 +607,8 @@ Value Evaluator::global_value(GlobalInfo* global) {
   auto& [state, value] = globals_[global];
   if (state == 2) return value;
   if (state == 1) {
-    sink_.report(DiagCode::CyclicDependency, global->decl->range, "Cyclic dependency detected at " + global->qualified);
+    sink_.report(DiagCode::CyclicDependency, global->decl->range,
+                 "Cyclic dependency detected at " + global->qualified);
     state = 2;
     value = Value::error();
     return value;
@@ -590,7 +617,8 @@ Value Evaluator::global_value(GlobalInfo* global) {
   const Type type = resolve_type(global->doc, global->decl->type);
   Scope scope{global->doc, nullptr, kNoObject};
   Value v = eval(*global->decl->value, scope, &type);
-  Value converted = convert(std::move(v), type, global->doc->doc.expr(*global->decl->value).range, global->qualified);
+  Value converted =
+      convert(std::move(v), type, global->doc->doc.expr(*global->decl->value).range, global->qualified);
   auto& entry = globals_[global];
   entry.first = 2;
   entry.second = std::move(converted);
@@ -618,12 +646,18 @@ bool Evaluator::is_path_expression(const Document& doc, ExprId expr) {
 
 Type Evaluator::type_of(const Value& v) const {
   switch (v.kind) {
-    case Value::Kind::Int: return Type::primitive(TypeKind::Int);
-    case Value::Kind::Real: return Type::primitive(TypeKind::Real);
-    case Value::Kind::Bool: return Type::primitive(TypeKind::Bool);
-    case Value::Kind::String: return Type::primitive(TypeKind::String);
-    case Value::Kind::Object: return Type::of_model(graph_.at(v.object).type);
-    default: return {};
+    case Value::Kind::Int:
+      return Type::primitive(TypeKind::Int);
+    case Value::Kind::Real:
+      return Type::primitive(TypeKind::Real);
+    case Value::Kind::Bool:
+      return Type::primitive(TypeKind::Bool);
+    case Value::Kind::String:
+      return Type::primitive(TypeKind::String);
+    case Value::Kind::Object:
+      return Type::of_model(graph_.at(v.object).type);
+    default:
+      return {};
   }
 }
 
@@ -638,17 +672,24 @@ bool Evaluator::assignable(const Value& v, const Type& target) const {
     return true;
   }
   switch (target.kind) {
-    case TypeKind::Real: return v.is_number();
-    case TypeKind::Int: return v.kind == Value::Kind::Int || (v.kind == Value::Kind::Real && std::trunc(v.real_value) == v.real_value);
-    case TypeKind::Bool: return v.kind == Value::Kind::Bool;
-    case TypeKind::String: return v.kind == Value::Kind::String;
-    case TypeKind::Model: return v.kind == Value::Kind::Object && graph_.at(v.object).type->is_subtype_of(target.model);
+    case TypeKind::Real:
+      return v.is_number();
+    case TypeKind::Int:
+      return v.kind == Value::Kind::Int ||
+             (v.kind == Value::Kind::Real && std::trunc(v.real_value) == v.real_value);
+    case TypeKind::Bool:
+      return v.kind == Value::Kind::Bool;
+    case TypeKind::String:
+      return v.kind == Value::Kind::String;
+    case TypeKind::Model:
+      return v.kind == Value::Kind::Object && graph_.at(v.object).type->is_subtype_of(target.model);
     case TypeKind::Union:
       for (const Type& alt : target.alternatives) {
         if (assignable(v, alt)) return true;
       }
       return false;
-    case TypeKind::Error: return true;
+    case TypeKind::Error:
+      return true;
   }
   return false;
 }
@@ -674,8 +715,8 @@ Value Evaluator::convert(Value v, const Type& target, SourceRange where, const s
   }
   if (!assignable(v, target)) {
     sink_.report(DiagCode::TypeMismatch, where,
-                 "Type mismatch: expected " + target.describe() + ", got " + describe_value_type(v, graph_) + " for " +
-                     what);
+                 "Type mismatch: expected " + target.describe() + ", got " + describe_value_type(v, graph_) +
+                     " for " + what);
     return Value::error();
   }
   if (!target.is_array && target.kind == TypeKind::Real && v.kind == Value::Kind::Int) {
@@ -733,17 +774,20 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
   if (e.kind == ExprKind::Member) {
     Entity target = eval_entity(e.operands[0], scope);
     switch (target.kind) {
-      case Entity::Kind::Value: entity.value = member_of(target.value, e.text, e.range); return entity;
+      case Entity::Kind::Value:
+        entity.value = member_of(target.value, e.text, e.range);
+        return entity;
       case Entity::Kind::Model:
         if (!program_.resolve(target.model)) {
           entity.value = Value::error();
         } else if (target.model->is_const) {
           entity.value = member_of(Value::of_object(singleton(target.model)), e.text, e.range);
         } else {
-          sink_.report(DiagCode::NotAValue, e.range,
-                       "`" + target.model->qualified + "." + std::string(e.text) + "`: " + target.model->qualified +
-                           " is a model; without an instance only its static methods and, for const models, its "
-                           "attributes can be used");
+          sink_.report(
+              DiagCode::NotAValue, e.range,
+              "`" + target.model->qualified + "." + std::string(e.text) + "`: " + target.model->qualified +
+                  " is a model; without an instance only its static methods and, for const models, its "
+                  "attributes can be used");
           entity.value = Value::error();
         }
         return entity;
@@ -778,8 +822,9 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
 Value Evaluator::member_of(const Value& object, std::string_view name, SourceRange where) {
   if (object.is_error()) return object;
   if (object.kind != Value::Kind::Object) {
-    sink_.report(DiagCode::UnknownAttribute, where,
-                 "a " + describe_value_type(object, graph_) + " value has no attribute `" + std::string(name) + "`");
+    sink_.report(
+        DiagCode::UnknownAttribute, where,
+        "a " + describe_value_type(object, graph_) + " value has no attribute `" + std::string(name) + "`");
     return Value::error();
   }
   const Object& obj = graph_.at(object.object);
@@ -802,7 +847,8 @@ Value Evaluator::member_of(const Value& object, std::string_view name, SourceRan
   const uint32_t index = it->second;
   Value v = value(object.object, index);
   if (v.kind == Value::Kind::Unset) {
-    sink_.report(DiagCode::UnsetAttribute, where, "Attribute " + slot_path(object.object, name) + " is not set");
+    sink_.report(DiagCode::UnsetAttribute, where,
+                 "Attribute " + slot_path(object.object, name) + " is not set");
     return Value::error();
   }
   return v;
@@ -812,16 +858,22 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
   const Document& doc = scope.doc->doc;
   const Expr& e = doc.expr(id);
   switch (e.kind) {
-    case ExprKind::Error: return Value::error();
+    case ExprKind::Error:
+      return Value::error();
     case ExprKind::Int:
       if (e.int_value) return Value::of_int(*e.int_value);
-      if (expected && expected->kind == TypeKind::Real && !expected->is_array) return Value::of_real(e.real_value);
-      sink_.report(DiagCode::TypeMismatch, e.range, "integer `" + std::string(e.text.substr(0, 24)) +
-                                                        "` does not fit in Int (64 bits); write it as a Real");
+      if (expected && expected->kind == TypeKind::Real && !expected->is_array)
+        return Value::of_real(e.real_value);
+      sink_.report(DiagCode::TypeMismatch, e.range,
+                   "integer `" + std::string(e.text.substr(0, 24)) +
+                       "` does not fit in Int (64 bits); write it as a Real");
       return Value::error();
-    case ExprKind::Real: return Value::of_real(e.real_value);
-    case ExprKind::Bool: return Value::of_bool(e.bool_value);
-    case ExprKind::String: return Value::of_string(e.string_value);
+    case ExprKind::Real:
+      return Value::of_real(e.real_value);
+    case ExprKind::Bool:
+      return Value::of_bool(e.bool_value);
+    case ExprKind::String:
+      return Value::of_string(e.string_value);
     case ExprKind::PathString: {
       namespace fs = std::filesystem;
       fs::path p(e.string_value);
@@ -836,15 +888,19 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
       if (entity.kind == Entity::Kind::Model && entity.model->is_const && program_.resolve(entity.model)) {
         return Value::of_object(singleton(entity.model));
       }
-      sink_.report(DiagCode::NotAValue, e.range,
-                   entity.kind == Entity::Kind::Model
-                       ? "`" + entity.model->qualified + "` is a model, not a value (only const models are values)"
-                       : "`" + entity.ns->qualified + "` is a namespace, not a value");
+      sink_.report(
+          DiagCode::NotAValue, e.range,
+          entity.kind == Entity::Kind::Model
+              ? "`" + entity.model->qualified + "` is a model, not a value (only const models are values)"
+              : "`" + entity.ns->qualified + "` is a namespace, not a value");
       return Value::error();
     }
-    case ExprKind::Call: return eval_call(e, scope);
-    case ExprKind::Unary: return eval_unary(e, scope, expected);
-    case ExprKind::Binary: return eval_binary(e, scope, expected);
+    case ExprKind::Call:
+      return eval_call(e, scope);
+    case ExprKind::Unary:
+      return eval_unary(e, scope, expected);
+    case ExprKind::Binary:
+      return eval_binary(e, scope, expected);
     case ExprKind::Array: {
       Type element;
       const bool typed = expected && expected->is_array;
@@ -853,13 +909,15 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
       for (ExprId item : e.operands) {
         Value v = eval(item, scope, typed ? &element : nullptr);
         // Checked here so a wrong element is reported where it is written.
-        if (typed) v = convert(std::move(v), element, doc.expr(item).range, "an element of " + expected->describe());
+        if (typed)
+          v = convert(std::move(v), element, doc.expr(item).range, "an element of " + expected->describe());
         if (v.is_error()) return v;
         items.push_back(std::move(v));
       }
       return Value::of_array(std::move(items));
     }
-    case ExprKind::Initializer: return eval_initializer(e, scope, expected);
+    case ExprKind::Initializer:
+      return eval_initializer(e, scope, expected);
   }
   return Value::error();
 }
@@ -881,19 +939,21 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
   std::vector<uint32_t> fields;
   for (uint32_t i = 0; i < graph_.at(object).slots.size(); ++i) {
     const Slot& slot = graph_.at(object).slots[i];
-    if (slot.type.is_primitive() && !slot.type.is_array && slot.type.kind != TypeKind::Error) fields.push_back(i);
+    if (slot.type.is_primitive() && !slot.type.is_array && slot.type.kind != TypeKind::Error)
+      fields.push_back(i);
   }
   if (e.operands.size() != fields.size()) {
     sink_.report(DiagCode::InitializerArity, e.range,
-                 "Initializer has " + std::to_string(e.operands.size()) + " values but " + model->qualified + " has " +
-                     std::to_string(fields.size()) + " fields");
+                 "Initializer has " + std::to_string(e.operands.size()) + " values but " + model->qualified +
+                     " has " + std::to_string(fields.size()) + " fields");
     return Value::error();
   }
   for (size_t i = 0; i < fields.size(); ++i) {
     const Type field_type = graph_.at(object).slots[fields[i]].type;
     Value v = eval(e.operands[i], scope, &field_type);
     const std::string field_name(graph_.at(object).slots[fields[i]].name);
-    v = convert(std::move(v), field_type, scope.doc->doc.expr(e.operands[i]).range, model->qualified + "." + field_name);
+    v = convert(std::move(v), field_type, scope.doc->doc.expr(e.operands[i]).range,
+                model->qualified + "." + field_name);
     if (v.is_error()) return v;
     preset(object, field_name, std::move(v));
   }
@@ -929,7 +989,8 @@ Value Evaluator::eval_binary(const Expr& e, const Scope& scope, const Type* expe
     Type init_type;
     auto fits = [&](const Type& t) {
       if (t.kind != TypeKind::Model || t.is_array) return false;
-      std::vector<Type> types = lhs_init ? std::vector<Type>{t, other_type} : std::vector<Type>{other_type, t};
+      std::vector<Type> types =
+          lhs_init ? std::vector<Type>{t, other_type} : std::vector<Type>{other_type, t};
       return find_operator(e.op, types, nullptr) != nullptr;
     };
     if (expected && fits(*expected)) {
@@ -962,10 +1023,14 @@ Value Evaluator::eval_binary(const Expr& e, const Scope& scope, const Type* expe
     // Int / Int is Real (spec §10.5 proposal): 7 / 2 is 3.5.
     const double a = lhs.as_real(), b = rhs.as_real();
     switch (e.op) {
-      case '+': return Value::of_real(a + b);
-      case '-': return Value::of_real(a - b);
-      case '*': return Value::of_real(a * b);
-      default: return Value::of_real(a / b);
+      case '+':
+        return Value::of_real(a + b);
+      case '-':
+        return Value::of_real(a - b);
+      case '*':
+        return Value::of_real(a * b);
+      default:
+        return Value::of_real(a / b);
     }
   }
   return apply_operator(e.op, {lhs, rhs}, e.range, true);
@@ -984,8 +1049,8 @@ const OperatorInfo* Evaluator::find_operator(char op, const std::vector<Type>& o
       const Type& a = operand_types[i];
       const bool same = p.kind == a.kind && p.is_array == a.is_array && p.model == a.model;
       const bool fits = same || (p.kind == TypeKind::Real && a.kind == TypeKind::Int && !a.is_array) ||
-                        (p.kind == TypeKind::Model && a.kind == TypeKind::Model && !p.is_array && !a.is_array &&
-                         a.model->is_subtype_of(p.model));
+                        (p.kind == TypeKind::Model && a.kind == TypeKind::Model && !p.is_array &&
+                         !a.is_array && a.model->is_subtype_of(p.model));
       exact = exact && same;
       compatible = compatible && fits;
       params.push_back(std::move(p));
@@ -1009,7 +1074,8 @@ Value Evaluator::apply_operator(char op, const std::vector<Value>& operands, Sou
   std::vector<Type> params;
   const OperatorInfo* info = find_operator(op, types, &params);
   std::string signature;
-  for (size_t i = 0; i < types.size(); ++i) signature += (i ? " and " : "") + describe_value_type(operands[i], graph_);
+  for (size_t i = 0; i < types.size(); ++i)
+    signature += (i ? " and " : "") + describe_value_type(operands[i], graph_);
   if (!info) {
     if (report) {
       sink_.report(DiagCode::NoOperator, where, std::string("No operator ") + op + " for " + signature);
@@ -1097,7 +1163,8 @@ Value Evaluator::eval_call(const Expr& call, const Scope& scope) {
     return Value::error();
   }
   if (method->member->is_static && on_instance) {
-    sink_.report(DiagCode::StaticMismatch, call.range, "Static method " + std::string(name) + " called on instance");
+    sink_.report(DiagCode::StaticMismatch, call.range,
+                 "Static method " + std::string(name) + " called on instance");
     return Value::error();
   }
   return call_method(owner, *method, method->member->is_static ? std::nullopt : self, std::move(args), scope,
@@ -1110,17 +1177,19 @@ Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::op
   const std::string name(m.path.parts[0].text);
   const std::string qualified = owner->qualified + "." + name;
   if (!m.is_static && !self) {
-    sink_.report(DiagCode::StaticMismatch, where, "Non-static method " + name + " called on type " + owner->qualified);
+    sink_.report(DiagCode::StaticMismatch, where,
+                 "Non-static method " + name + " called on type " + owner->qualified);
     return Value::error();
   }
   if (!m.return_type) {
-    sink_.report(DiagCode::VoidMethodCall, where, "Method " + name + " has no return value and cannot be called");
+    sink_.report(DiagCode::VoidMethodCall, where,
+                 "Method " + name + " has no return value and cannot be called");
     return Value::error();
   }
   if (args.size() != m.params.size()) {
     sink_.report(DiagCode::WrongArgumentCount, where,
-                 "Wrong number of arguments to " + name + ": expected " + std::to_string(m.params.size()) + ", got " +
-                     std::to_string(args.size()));
+                 "Wrong number of arguments to " + name + ": expected " + std::to_string(m.params.size()) +
+                     ", got " + std::to_string(args.size()));
     return Value::error();
   }
   std::vector<Value> values;
@@ -1151,7 +1220,9 @@ Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::op
 
 // ------------------------------------------------------------------------------------------- natives
 
-double NativeCall::real(const Value& v) { return v.as_real(); }
+double NativeCall::real(const Value& v) {
+  return v.as_real();
+}
 
 std::vector<double> NativeCall::reals(const Value& array) {
   std::vector<double> out;
@@ -1182,17 +1253,21 @@ std::vector<double> NativeCall::fields(const Value& object, std::initializer_lis
   return out;
 }
 
-Value NativeCall::make(std::string_view model, std::initializer_list<std::pair<std::string_view, double>> fields) {
+Value NativeCall::make(std::string_view model,
+                       std::initializer_list<std::pair<std::string_view, double>> fields) {
   ModelInfo* info = evaluator_.program().builtin_model(model);
-  if (!info || !evaluator_.program().resolve(info)) return fail("the bundle model " + std::string(model) + " is missing");
+  if (!info || !evaluator_.program().resolve(info))
+    return fail("the bundle model " + std::string(model) + " is missing");
   ObjectId id = evaluator_.make_free_object(info);
   for (const auto& [name, v] : fields) evaluator_.preset(id, name, Value::of_real(v));
   return Value::of_object(id);
 }
 
-Value NativeCall::make_with(std::string_view model, std::initializer_list<std::pair<std::string_view, Value>> fields) {
+Value NativeCall::make_with(std::string_view model,
+                            std::initializer_list<std::pair<std::string_view, Value>> fields) {
   ModelInfo* info = evaluator_.program().builtin_model(model);
-  if (!info || !evaluator_.program().resolve(info)) return fail("the bundle model " + std::string(model) + " is missing");
+  if (!info || !evaluator_.program().resolve(info))
+    return fail("the bundle model " + std::string(model) + " is missing");
   ObjectId id = evaluator_.make_free_object(info);
   for (const auto& [name, v] : fields) evaluator_.preset(id, name, v);
   return Value::of_object(id);

@@ -133,7 +133,8 @@ class Evaluator {
   Value eval_unary(const Expr& e, const Scope& scope, const Type* expected);
   Value eval_initializer(const Expr& e, const Scope& scope, const Type* expected);
   Value apply_operator(char op, const std::vector<Value>& operands, SourceRange where, bool report);
-  const OperatorInfo* find_operator(char op, const std::vector<Type>& operand_types, std::vector<Type>* params);
+  const OperatorInfo* find_operator(char op, const std::vector<Type>& operand_types,
+                                    std::vector<Type>* params);
   Type type_of(const Value& v) const;
   const MethodInfo* find_method(ModelInfo* model, std::string_view name, ModelInfo** owner);
 

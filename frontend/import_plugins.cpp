@@ -20,8 +20,10 @@ std::optional<std::string> import_plugin_source(const std::string& path, const s
     return "`" + model_name + "`:\n    path is String: @\"" + path + "\"\n    scale is Real: 1.0\n";
   }
   if (extension == ".agx") {
-    error = "AGX archives (.agx) cannot be imported: they are a binary AGX Dynamics format with no OpenPLX or MuJoCo "
-            "equivalent; export the model to OpenPLX or URDF instead";
+    error =
+        "AGX archives (.agx) cannot be imported: they are a binary AGX Dynamics format with no OpenPLX or "
+        "MuJoCo "
+        "equivalent; export the model to OpenPLX or URDF instead";
     return std::nullopt;
   }
   if (extension == ".urdf") {

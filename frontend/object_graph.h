@@ -20,9 +20,9 @@ namespace openplx::frontend {
 
 struct Binding {
   const Entry* entry = nullptr;
-  ModelInfo* model = nullptr;      // the model whose text holds the entry (name lookup, `this` type)
-  ObjectId self = kNoObject;       // the instance `this` means when evaluating it
-  uint32_t level = UINT32_MAX;     // ancestor depth it came from: 0 = root; lower wins
+  ModelInfo* model = nullptr;   // the model whose text holds the entry (name lookup, `this` type)
+  ObjectId self = kNoObject;    // the instance `this` means when evaluating it
+  uint32_t level = UINT32_MAX;  // ancestor depth it came from: 0 = root; lower wins
 };
 
 struct AnnotationValue {
@@ -37,8 +37,8 @@ struct Slot {
   Type declared_type;
   Type type;  // after `becomes`
   bool optional = false;
-  Binding binding;           // the value's source; entry == nullptr when nothing binds it
-  Binding becomes;           // the `becomes` that set `type`, if any
+  Binding binding;              // the value's source; entry == nullptr when nothing binds it
+  Binding becomes;              // the `becomes` that set `type`, if any
   bool explicit_value = false;  // assigned (not a declaration default), itself or any part of it
   enum class State : uint8_t { Pending, Evaluating, Done } state = State::Pending;
   bool owns = false;    // value is an object owned by this slot

@@ -13,7 +13,8 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
                                  : result.program->load_main(request.path);
   if (!result.document) return result;
   const bool syntax_errors = sink.has_errors();
-  ModelInfo* root_model = select_root_model(*result.program, result.document, request.model ? &*request.model : nullptr);
+  ModelInfo* root_model =
+      select_root_model(*result.program, result.document, request.model ? &*request.model : nullptr);
   if (syntax_errors) return result;  // evaluating would only repeat them
   // Every declaration of the user's file is checked, used or not; bundles only as far as they are used.
   for (const Decl& decl : result.document->doc.decls) {

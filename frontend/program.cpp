@@ -157,7 +157,8 @@ void Program::declare(DocumentInfo* doc, Namespace* ns) {
       operators_.push_back({&decl, doc});
       continue;
     }
-    if (decl.kind != DeclKind::Model && decl.kind != DeclKind::Trait && decl.kind != DeclKind::GlobalAttribute) {
+    if (decl.kind != DeclKind::Model && decl.kind != DeclKind::Trait &&
+        decl.kind != DeclKind::GlobalAttribute) {
       continue;
     }
     const std::string name(decl.name.text);
@@ -208,7 +209,8 @@ void Program::process_imports(DocumentInfo* doc) {
         std::string error;
         std::optional<FileId> id = sources_.load(path, error);
         if (!id) {
-          sink_.report(DiagCode::ImportNotFound, decl.range, "Could not read imported file " + path + ": " + error);
+          sink_.report(DiagCode::ImportNotFound, decl.range,
+                       "Could not read imported file " + path + ": " + error);
           continue;
         }
         Namespace* ns = new_namespace(alias, nullptr, "", nullptr);
@@ -305,14 +307,16 @@ Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRang
   if (!ns->legacy) {
     load_namespace(ns);
     if (auto it = ns->symbols.find(name); it != ns->symbols.end()) return it->second;
-    if (auto it = ns->children.find(name); it != ns->children.end()) return Symbol{nullptr, nullptr, it->second};
+    if (auto it = ns->children.find(name); it != ns->children.end())
+      return Symbol{nullptr, nullptr, it->second};
   }
   // A model of the 0.17.8 API that moved: found at its current home, with a warning naming it.
   std::optional<std::string> current = renamed_model(ns->qualified, name);
   ModelInfo* model = current ? builtin_model(*current) : nullptr;
   if (model && where) {
-    sink_.report(DiagCode::DeprecatedName, *where,
-                 "`" + ns->qualified + "." + std::string(name) + "` is the 0.17.8 name; use `" + *current + "`");
+    sink_.report(
+        DiagCode::DeprecatedName, *where,
+        "`" + ns->qualified + "." + std::string(name) + "` is the 0.17.8 name; use `" + *current + "`");
   }
   return model ? Symbol{model} : Symbol{};
 }
@@ -335,11 +339,12 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
   if (Symbol s = lookup_in(builtins_, name)) return s;
   if (Namespace* root = bundle_root(name)) {
     if (bundle_visible(doc, root->bundle)) {
-      for (const BundleDependency& dep : doc->bundle ? doc->bundle->dependencies : std::vector<BundleDependency>{}) {
+      for (const BundleDependency& dep :
+           doc->bundle ? doc->bundle->dependencies : std::vector<BundleDependency>{}) {
         if (dep.name == name && !dep.version.empty() && dep.version != root->bundle->version && report) {
           sink_.report(DiagCode::BundleVersionMismatch, where,
-                       "Bundle " + doc->bundle->name + " requires " + dep.name + "@" + dep.version + " but found " +
-                           dep.name + "@" + root->bundle->version);
+                       "Bundle " + doc->bundle->name + " requires " + dep.name + "@" + dep.version +
+                           " but found " + dep.name + "@" + root->bundle->version);
         }
       }
       return Symbol{nullptr, nullptr, root};
@@ -446,7 +451,8 @@ ModelInfo* Program::make_trait_extension(ModelInfo* base, std::vector<ModelInfo*
   return &model;
 }
 
-void Program::flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix) {
+void Program::flatten(ModelInfo* model, const std::vector<Member>& members,
+                      std::vector<std::string_view>& prefix) {
   auto add = [&](Entry::Kind kind, const Member& m, std::vector<std::string_view> path) {
     Entry e;
     e.kind = kind;
@@ -531,14 +537,17 @@ void Program::flatten(ModelInfo* model, const std::vector<Member>& members, std:
 
 bool Program::resolve(ModelInfo* model) {
   switch (model->state) {
-    case ModelInfo::State::Resolved: return true;
-    case ModelInfo::State::Failed: return false;
+    case ModelInfo::State::Resolved:
+      return true;
+    case ModelInfo::State::Failed:
+      return false;
     case ModelInfo::State::Resolving:
       sink_.report(DiagCode::CyclicInheritance, model->decl ? model->decl->name.range : SourceRange{},
                    "Cyclic inheritance involving " + model->qualified);
       model->state = ModelInfo::State::Failed;
       return false;
-    case ModelInfo::State::Unresolved: break;
+    case ModelInfo::State::Unresolved:
+      break;
   }
   model->state = ModelInfo::State::Resolving;
   const Decl& decl = *model->decl;
@@ -578,7 +587,8 @@ bool Program::resolve(ModelInfo* model) {
   model->linearization = {model};
   auto add_all = [&](ModelInfo* m) {
     for (ModelInfo* l : m->linearization) {
-      if (std::find(model->linearization.begin(), model->linearization.end(), l) == model->linearization.end()) {
+      if (std::find(model->linearization.begin(), model->linearization.end(), l) ==
+          model->linearization.end()) {
         model->linearization.push_back(l);
       }
     }
@@ -635,11 +645,12 @@ bool Program::resolve(ModelInfo* model) {
         const Entry& o = other->entries[index];
         if (o.kind != Entry::Kind::Declare || o.path[0] != e.path[0]) continue;
         const bool from_trait = other->is_trait && !model->is_trait;
-        sink_.report(from_trait ? DiagCode::TraitRestriction : DiagCode::DuplicateAttribute, e.member->path.range,
-                     from_trait ? "Trait " + other->qualified + " injects attribute " + std::string(e.path[0]) +
-                                      " which already exists in " + model->qualified
-                                : "Duplicate attribute name " + std::string(e.path[0]) + " (already declared in " +
-                                      other->qualified + ")");
+        sink_.report(from_trait ? DiagCode::TraitRestriction : DiagCode::DuplicateAttribute,
+                     e.member->path.range,
+                     from_trait ? "Trait " + other->qualified + " injects attribute " +
+                                      std::string(e.path[0]) + " which already exists in " + model->qualified
+                                : "Duplicate attribute name " + std::string(e.path[0]) +
+                                      " (already declared in " + other->qualified + ")");
         ok = false;
       }
     }

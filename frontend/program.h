@@ -30,9 +30,9 @@ class Program;
 // A loaded document and where its names resolve.
 struct DocumentInfo {
   Document doc;
-  Namespace* ns = nullptr;              // namespace its declarations belong to
-  const BundleConfig* bundle = nullptr;  // enclosing bundle, if any
-  std::map<std::string, Namespace*, std::less<>> import_namespaces;   // `import @"x.openplx" as X`
+  Namespace* ns = nullptr;                                           // namespace its declarations belong to
+  const BundleConfig* bundle = nullptr;                              // enclosing bundle, if any
+  std::map<std::string, Namespace*, std::less<>> import_namespaces;  // `import @"x.openplx" as X`
   std::map<std::string, ModelInfo*, std::less<>> import_models;      // asset imports
   std::vector<Namespace*> imported_files;  // `import @"x.openplx"` without `as`: looked up like locals
 };
@@ -91,14 +91,15 @@ struct ModelInfo {
   // Filled by Program::resolve().
   enum class State : uint8_t { Unresolved, Resolving, Resolved, Failed } state = State::Unresolved;
   ModelInfo* base = nullptr;
-  std::vector<ModelInfo*> traits;         // direct `with` traits
-  std::vector<ModelInfo*> linearization;  // self, own traits (with their parents), then the base's, deduplicated
+  std::vector<ModelInfo*> traits;  // direct `with` traits
+  std::vector<ModelInfo*>
+      linearization;  // self, own traits (with their parents), then the base's, deduplicated
   std::vector<Entry> entries;
   std::unordered_map<std::string, std::vector<uint32_t>> by_parent;  // parent_key -> entries
   std::unordered_map<std::string, uint32_t> prefixes;  // every strict prefix of an entry path -> an entry
   std::unordered_map<std::string, uint32_t> assigned_prefixes;  // the same, for Value and Becomes entries
-  std::vector<MethodInfo> methods;                     // own methods
-  std::map<std::string, ExprId, std::less<>> annotations;  // own model annotations
+  std::vector<MethodInfo> methods;                              // own methods
+  std::map<std::string, ExprId, std::less<>> annotations;       // own model annotations
 
   bool is_subtype_of(const ModelInfo* other) const;  // reflexive; through bases and traits
 };
@@ -160,7 +161,7 @@ class Program {
 
   SourceManager& sources_;
   DiagnosticSink& sink_;
-  Namespace* builtins_ = nullptr;  // models every file sees without a bundle (BundleConfig)
+  Namespace* builtins_ = nullptr;     // models every file sees without a bundle (BundleConfig)
   std::deque<BundleConfig> bundles_;  // stable addresses: namespaces and documents point at them
   std::map<std::string, Namespace*, std::less<>> bundle_roots_;
   std::deque<Namespace> namespaces_;

@@ -12,7 +12,8 @@ namespace {
 // Vectors and quaternions read best as one value; every other model instance is a subtree.
 bool is_inline_type(const ModelInfo* type) {
   for (const ModelInfo* m : type->linearization) {
-    if (m->qualified == "Math.Vec2" || m->qualified == "Math.Vec3" || m->qualified == "Math.Quat") return true;
+    if (m->qualified == "Math.Vec2" || m->qualified == "Math.Vec3" || m->qualified == "Math.Quat")
+      return true;
   }
   return false;
 }
@@ -21,11 +22,20 @@ std::string quoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default: out += c;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        out += c;
     }
   }
   return out + "\"";
@@ -45,14 +55,22 @@ std::string format_real(double value) {
 
 std::string describe_value_type(const Value& value, const ObjectGraph& graph) {
   switch (value.kind) {
-    case Value::Kind::Unset: return "unset";
-    case Value::Kind::Error: return "<error>";
-    case Value::Kind::Int: return "Int";
-    case Value::Kind::Real: return "Real";
-    case Value::Kind::Bool: return "Bool";
-    case Value::Kind::String: return "String";
-    case Value::Kind::Object: return graph.at(value.object).type->qualified;
-    case Value::Kind::Array: return "array";
+    case Value::Kind::Unset:
+      return "unset";
+    case Value::Kind::Error:
+      return "<error>";
+    case Value::Kind::Int:
+      return "Int";
+    case Value::Kind::Real:
+      return "Real";
+    case Value::Kind::Bool:
+      return "Bool";
+    case Value::Kind::String:
+      return "String";
+    case Value::Kind::Object:
+      return graph.at(value.object).type->qualified;
+    case Value::Kind::Array:
+      return "array";
   }
   return "?";
 }
@@ -60,17 +78,24 @@ std::string describe_value_type(const Value& value, const ObjectGraph& graph) {
 std::string format_value(Evaluator& evaluator, const Value& value, bool owned) {
   const ObjectGraph& graph = evaluator.graph();
   switch (value.kind) {
-    case Value::Kind::Unset: return "unset";
-    case Value::Kind::Error: return "<error>";
-    case Value::Kind::Int: return std::to_string(value.int_value);
-    case Value::Kind::Real: return format_real(value.real_value);
-    case Value::Kind::Bool: return value.bool_value ? "true" : "false";
-    case Value::Kind::String: return quoted(value.string_value);
+    case Value::Kind::Unset:
+      return "unset";
+    case Value::Kind::Error:
+      return "<error>";
+    case Value::Kind::Int:
+      return std::to_string(value.int_value);
+    case Value::Kind::Real:
+      return format_real(value.real_value);
+    case Value::Kind::Bool:
+      return value.bool_value ? "true" : "false";
+    case Value::Kind::String:
+      return quoted(value.string_value);
     case Value::Kind::Array: {
       std::string out = "[";
       for (size_t i = 0; i < value.array.size(); ++i) {
         const Value& item = value.array[i];
-        const bool item_owned = item.kind == Value::Kind::Object && graph.at(item.object).owner == kNoObject &&
+        const bool item_owned = item.kind == Value::Kind::Object &&
+                                graph.at(item.object).owner == kNoObject &&
                                 !graph.at(item.object).is_const_singleton;
         out += (i ? ", " : "") + format_value(evaluator, item, item_owned);
       }
@@ -113,7 +138,8 @@ void dump_values(std::ostream& out, Evaluator& evaluator, ObjectId root) {
     const std::string base = evaluator.graph().path(id);
     out << (base.empty() ? "" : base + ".") << slot.name << " = " << format_value(evaluator, value, slot.owns)
         << '\n';
-    if (slot.owns && value.kind == Value::Kind::Object && !is_inline_type(evaluator.graph().at(value.object).type)) {
+    if (slot.owns && value.kind == Value::Kind::Object &&
+        !is_inline_type(evaluator.graph().at(value.object).type)) {
       stack.push_back({value.object, 0});
     }
   }

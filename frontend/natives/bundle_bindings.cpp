@@ -17,14 +17,22 @@ using Args = std::span<const Value>;
 // Bytes per point of each Sensors.LidarOutputField (its suffix names the element type).
 int lidar_field_bytes(int64_t field) {
   switch (field) {
-    case 1: return 8;    // TimeStamp_F64
-    case 11: return 12;  // Position3D_F32
-    case 12: return 4;   // Distance_F32
-    case 13: return 48;  // RayPose3x4_F32
-    case 21: return 4;   // IsHit_I32
-    case 22: return 4;   // Intensity_F32
-    case 31: return 4;   // EntityId_I32
-    default: return -1;
+    case 1:
+      return 8;  // TimeStamp_F64
+    case 11:
+      return 12;  // Position3D_F32
+    case 12:
+      return 4;  // Distance_F32
+    case 13:
+      return 48;  // RayPose3x4_F32
+    case 21:
+      return 4;  // IsHit_I32
+    case 22:
+      return 4;  // Intensity_F32
+    case 31:
+      return 4;  // EntityId_I32
+    default:
+      return -1;
   }
 }
 
@@ -54,7 +62,8 @@ void register_bundle_natives(NativeRegistry& r) {
     return out;
   });
   r.add("Visuals.Properties.Color.from_rgb", [](NativeCall& c, Args a) {
-    return c.make("Visuals.Properties.Color", {{"r", a[0].as_real()}, {"g", a[1].as_real()}, {"b", a[2].as_real()}, {"a", 1.0}});
+    return c.make("Visuals.Properties.Color",
+                  {{"r", a[0].as_real()}, {"g", a[1].as_real()}, {"b", a[2].as_real()}, {"a", 1.0}});
   });
   r.add("Physics.Geometries.Material.is_default_material", &is_default_material);
   r.add("Terrain.TerrainMaterial.is_default_terrain_material", &is_default_material);
@@ -67,8 +76,8 @@ void register_bundle_natives(NativeRegistry& r) {
     }
     // One record per lidar ray, as many as hit: a dynamic array of `bytes`-sized points.
     return c.make_with("Physics.Signals.Marshalling", {{"is_dynamic", Value::of_bool(true)},
-                                                      {"size", Value::of_int(bytes)},
-                                                      {"array_type", Value::of_int(2)}});
+                                                       {"size", Value::of_int(bytes)},
+                                                       {"array_type", Value::of_int(2)}});
   });
 }
 

@@ -33,8 +33,12 @@ Q quat(NativeCall& c, const Value& v) {
   auto f = c.fields(v, {"x", "y", "z", "w"});
   return quat_from_xyzw(f[0], f[1], f[2], f[3]);
 }
-Value make_vec3(NativeCall& c, const V3& v) { return c.make("Math.Vec3", {{"x", v.x()}, {"y", v.y()}, {"z", v.z()}}); }
-Value make_vec2(NativeCall& c, const Eigen::Vector2d& v) { return c.make("Math.Vec2", {{"x", v.x()}, {"y", v.y()}}); }
+Value make_vec3(NativeCall& c, const V3& v) {
+  return c.make("Math.Vec3", {{"x", v.x()}, {"y", v.y()}, {"z", v.z()}});
+}
+Value make_vec2(NativeCall& c, const Eigen::Vector2d& v) {
+  return c.make("Math.Vec2", {{"x", v.x()}, {"y", v.y()}});
+}
 Value make_quat(NativeCall& c, const Q& q) {
   auto xyzw = quat_to_xyzw(q);
   return c.make("Math.Quat", {{"x", xyzw[0]}, {"y", xyzw[1]}, {"z", xyzw[2]}, {"w", xyzw[3]}});
@@ -43,9 +47,12 @@ Affine affine(NativeCall& c, const Value& v) {
   return {vec3(c, c.object(v, "position")), quat(c, c.object(v, "rotation"))};
 }
 Value make_affine(NativeCall& c, const Affine& a) {
-  return c.make_with("Math.AffineTransform", {{"position", make_vec3(c, a.position)}, {"rotation", make_quat(c, a.rotation)}});
+  return c.make_with("Math.AffineTransform",
+                     {{"position", make_vec3(c, a.position)}, {"rotation", make_quat(c, a.rotation)}});
 }
-Value real(double v) { return Value::of_real(v); }
+Value real(double v) {
+  return Value::of_real(v);
+}
 
 template <int N>
 Eigen::Matrix<double, N, N> matrix(NativeCall& c, const Value& v) {
@@ -72,7 +79,8 @@ Value make_matrix(NativeCall& c, const Eigen::Matrix<double, N, N>& m) {
 }
 template <typename M>
 Value matrix_or_fail(NativeCall& c, const std::optional<M>& m, const char* what) {
-  if (!m) return c.fail(std::string(what) + ": every row or column needs exactly as many values as the matrix has");
+  if (!m)
+    return c.fail(std::string(what) + ": every row or column needs exactly as many values as the matrix has");
   return make_matrix<M::RowsAtCompileTime>(c, *m);
 }
 
@@ -80,7 +88,9 @@ void add_vectors(NativeRegistry& r) {
   r.add("Math.Vec3.X_AXIS", [](NativeCall& c, Args) { return make_vec3(c, V3::UnitX()); });
   r.add("Math.Vec3.Y_AXIS", [](NativeCall& c, Args) { return make_vec3(c, V3::UnitY()); });
   r.add("Math.Vec3.Z_AXIS", [](NativeCall& c, Args) { return make_vec3(c, V3::UnitZ()); });
-  r.add("Math.Vec3.from_xyz", [](NativeCall& c, Args a) { return make_vec3(c, {a[0].as_real(), a[1].as_real(), a[2].as_real()}); });
+  r.add("Math.Vec3.from_xyz", [](NativeCall& c, Args a) {
+    return make_vec3(c, {a[0].as_real(), a[1].as_real(), a[2].as_real()});
+  });
   r.add("Math.Vec3.fromXYZ", *r.find("Math.Vec3.from_xyz"));
   r.add("Math.Vec3.angle_between_vectors", [](NativeCall& c, Args a) {
     return real(angle_between_vectors(vec3(c, a[0]), vec3(c, a[1]), vec3(c, a[2])));
@@ -92,20 +102,29 @@ void add_vectors(NativeRegistry& r) {
     return make_vec3(c, v.normalized());
   });
   r.add("Math.Vec3.dot", [](NativeCall& c, Args a) { return real(vec3(c, a[0]).dot(vec3(c, a[1]))); });
-  r.add("Math.Vec3.cross", [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]).cross(vec3(c, a[1]))); });
+  r.add("Math.Vec3.cross",
+        [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]).cross(vec3(c, a[1]))); });
   r.add("Math.Vec3.get_orthogonal_unit_vector",
         [](NativeCall& c, Args a) { return make_vec3(c, orthogonal_unit_vector(vec3(c, a[0]))); });
-  r.add("operator+(Math.Vec3,Math.Vec3)", [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) + vec3(c, a[1])); });
-  r.add("operator-(Math.Vec3,Math.Vec3)", [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) - vec3(c, a[1])); });
-  r.add("operator*(Real,Math.Vec3)", [](NativeCall& c, Args a) { return make_vec3(c, a[0].as_real() * vec3(c, a[1])); });
-  r.add("operator*(Math.Vec3,Real)", [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) * a[1].as_real()); });
-  r.add("operator*(Math.Vec3,Math.Vec3)", [](NativeCall& c, Args a) { return real(vec3(c, a[0]).dot(vec3(c, a[1]))); });
-  r.add("operator/(Math.Vec3,Real)", [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) / a[1].as_real()); });
+  r.add("operator+(Math.Vec3,Math.Vec3)",
+        [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) + vec3(c, a[1])); });
+  r.add("operator-(Math.Vec3,Math.Vec3)",
+        [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) - vec3(c, a[1])); });
+  r.add("operator*(Real,Math.Vec3)",
+        [](NativeCall& c, Args a) { return make_vec3(c, a[0].as_real() * vec3(c, a[1])); });
+  r.add("operator*(Math.Vec3,Real)",
+        [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) * a[1].as_real()); });
+  r.add("operator*(Math.Vec3,Math.Vec3)",
+        [](NativeCall& c, Args a) { return real(vec3(c, a[0]).dot(vec3(c, a[1]))); });
+  r.add("operator/(Math.Vec3,Real)",
+        [](NativeCall& c, Args a) { return make_vec3(c, vec3(c, a[0]) / a[1].as_real()); });
   r.add("operator-(Math.Vec3)", [](NativeCall& c, Args a) { return make_vec3(c, -vec3(c, a[0])); });
 
   r.add("Math.Vec2.X_AXIS", [](NativeCall& c, Args) { return make_vec2(c, Eigen::Vector2d::UnitX()); });
   r.add("Math.Vec2.Y_AXIS", [](NativeCall& c, Args) { return make_vec2(c, Eigen::Vector2d::UnitY()); });
-  r.add("Math.Vec2.from_xy", [](NativeCall& c, Args a) { return make_vec2(c, {a[0].as_real(), a[1].as_real()}); });
+  r.add("Math.Vec2.from_xy", [](NativeCall& c, Args a) {
+    return make_vec2(c, {a[0].as_real(), a[1].as_real()});
+  });
   r.add("Math.Vec2.length", [](NativeCall& c, Args a) { return real(vec2(c, a[0]).norm()); });
   r.add("Math.Vec2.normal", [](NativeCall& c, Args a) {
     Eigen::Vector2d v = vec2(c, a[0]);
@@ -113,22 +132,30 @@ void add_vectors(NativeRegistry& r) {
     return make_vec2(c, v.normalized());
   });
   r.add("Math.Vec2.dot", [](NativeCall& c, Args a) { return real(vec2(c, a[0]).dot(vec2(c, a[1]))); });
-  r.add("operator+(Math.Vec2,Math.Vec2)", [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) + vec2(c, a[1])); });
-  r.add("operator-(Math.Vec2,Math.Vec2)", [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) - vec2(c, a[1])); });
-  r.add("operator*(Real,Math.Vec2)", [](NativeCall& c, Args a) { return make_vec2(c, a[0].as_real() * vec2(c, a[1])); });
-  r.add("operator*(Math.Vec2,Real)", [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) * a[1].as_real()); });
-  r.add("operator*(Math.Vec2,Math.Vec2)", [](NativeCall& c, Args a) { return real(vec2(c, a[0]).dot(vec2(c, a[1]))); });
-  r.add("operator/(Math.Vec2,Real)", [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) / a[1].as_real()); });
+  r.add("operator+(Math.Vec2,Math.Vec2)",
+        [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) + vec2(c, a[1])); });
+  r.add("operator-(Math.Vec2,Math.Vec2)",
+        [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) - vec2(c, a[1])); });
+  r.add("operator*(Real,Math.Vec2)",
+        [](NativeCall& c, Args a) { return make_vec2(c, a[0].as_real() * vec2(c, a[1])); });
+  r.add("operator*(Math.Vec2,Real)",
+        [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) * a[1].as_real()); });
+  r.add("operator*(Math.Vec2,Math.Vec2)",
+        [](NativeCall& c, Args a) { return real(vec2(c, a[0]).dot(vec2(c, a[1]))); });
+  r.add("operator/(Math.Vec2,Real)",
+        [](NativeCall& c, Args a) { return make_vec2(c, vec2(c, a[0]) / a[1].as_real()); });
   r.add("operator-(Math.Vec2)", [](NativeCall& c, Args a) { return make_vec2(c, -vec2(c, a[0])); });
 }
 
 void add_quaternions(NativeRegistry& r) {
-  r.add("Math.Quat.rotate", [](NativeCall& c, Args a) { return make_vec3(c, quat_rotate(quat(c, a[0]), vec3(c, a[1]))); });
+  r.add("Math.Quat.rotate",
+        [](NativeCall& c, Args a) { return make_vec3(c, quat_rotate(quat(c, a[0]), vec3(c, a[1]))); });
   r.add("Math.Quat.conj", [](NativeCall& c, Args a) { return make_quat(c, quat_conj(quat(c, a[0]))); });
   r.add("Math.Quat.inverse", [](NativeCall& c, Args a) { return make_quat(c, quat_inverse(quat(c, a[0]))); });
   r.add("Math.Quat.angle_axis",
         [](NativeCall& c, Args a) { return make_quat(c, quat_angle_axis(a[0].as_real(), vec3(c, a[1]))); });
-  r.add("Math.Quat.from_to", [](NativeCall& c, Args a) { return make_quat(c, quat_from_to(vec3(c, a[0]), vec3(c, a[1]))); });
+  r.add("Math.Quat.from_to",
+        [](NativeCall& c, Args a) { return make_quat(c, quat_from_to(vec3(c, a[0]), vec3(c, a[1]))); });
   r.add("Math.Quat.normal", [](NativeCall& c, Args a) { return make_quat(c, quat_normal(quat(c, a[0]))); });
   r.add("Math.Quat.from_xyzw", [](NativeCall& c, Args a) {
     return make_quat(c, quat_from_xyzw(a[0].as_real(), a[1].as_real(), a[2].as_real(), a[3].as_real()));
@@ -143,27 +170,34 @@ void add_quaternions(NativeRegistry& r) {
     });
   }
   r.add("Math.Quat.from_euler_angles", *r.find("Math.Quat.from_euler_angles_xyzs"));
-  r.add("operator*(Math.Quat,Math.Quat)", [](NativeCall& c, Args a) { return make_quat(c, quat(c, a[0]) * quat(c, a[1])); });
+  r.add("operator*(Math.Quat,Math.Quat)",
+        [](NativeCall& c, Args a) { return make_quat(c, quat(c, a[0]) * quat(c, a[1])); });
 }
 
 void add_transforms(NativeRegistry& r) {
   r.add("Math.AffineTransform.create", [](NativeCall& c, Args) { return make_affine(c, Affine{}); });
-  r.add("Math.AffineTransform.from",
-        [](NativeCall& c, Args a) { return make_affine(c, Affine{vec3(c, a[0]), quat(c, a[1])}); });
+  r.add("Math.AffineTransform.from", [](NativeCall& c, Args a) {
+    return make_affine(c, Affine{vec3(c, a[0]), quat(c, a[1])});
+  });
   r.add("Math.AffineTransform.from_axes", [](NativeCall& c, Args a) {
     std::optional<Affine> t = affine_from_axes(vec3(c, a[0]), vec3(c, a[1]), vec3(c, a[2]));
     if (!t) return c.fail("from_axes needs a non-zero new_Z and a new_X that is not parallel to it");
     return make_affine(c, *t);
   });
-  r.add("Math.AffineTransform.inverse_of",
-        [](NativeCall& c, Args a) { return make_affine(c, affine_inverse_of(vec3(c, a[0]), quat(c, a[1]))); });
-  r.add("Math.AffineTransform.inverse", [](NativeCall& c, Args a) { return make_affine(c, affine_inverse(affine(c, a[0]))); });
-  r.add("Math.AffineTransform.transform_vec3_point",
-        [](NativeCall& c, Args a) { return make_vec3(c, affine_transform_point(affine(c, a[0]), vec3(c, a[1]))); });
-  r.add("Math.AffineTransform.transform_vec3_vector",
-        [](NativeCall& c, Args a) { return make_vec3(c, affine_transform_vector(affine(c, a[0]), vec3(c, a[1]))); });
-  r.add("operator*(Math.AffineTransform,Math.AffineTransform)",
-        [](NativeCall& c, Args a) { return make_affine(c, affine_compose(affine(c, a[0]), affine(c, a[1]))); });
+  r.add("Math.AffineTransform.inverse_of", [](NativeCall& c, Args a) {
+    return make_affine(c, affine_inverse_of(vec3(c, a[0]), quat(c, a[1])));
+  });
+  r.add("Math.AffineTransform.inverse",
+        [](NativeCall& c, Args a) { return make_affine(c, affine_inverse(affine(c, a[0]))); });
+  r.add("Math.AffineTransform.transform_vec3_point", [](NativeCall& c, Args a) {
+    return make_vec3(c, affine_transform_point(affine(c, a[0]), vec3(c, a[1])));
+  });
+  r.add("Math.AffineTransform.transform_vec3_vector", [](NativeCall& c, Args a) {
+    return make_vec3(c, affine_transform_vector(affine(c, a[0]), vec3(c, a[1])));
+  });
+  r.add("operator*(Math.AffineTransform,Math.AffineTransform)", [](NativeCall& c, Args a) {
+    return make_affine(c, affine_compose(affine(c, a[0]), affine(c, a[1])));
+  });
 }
 
 void add_matrices(NativeRegistry& r) {
@@ -176,7 +210,8 @@ void add_matrices(NativeRegistry& r) {
     return matrix_or_fail(c, matrix3_from_rows(c.reals(a[0]), c.reals(a[1]), c.reals(a[2])), "from_rows");
   });
   r.add("Math.Matrix3x3.from_columns", [](NativeCall& c, Args a) {
-    return matrix_or_fail(c, matrix3_from_columns(c.reals(a[0]), c.reals(a[1]), c.reals(a[2])), "from_columns");
+    return matrix_or_fail(c, matrix3_from_columns(c.reals(a[0]), c.reals(a[1]), c.reals(a[2])),
+                          "from_columns");
   });
   r.add("Math.Matrix3x3.diag", [](NativeCall& c, Args a) {
     return make_matrix<3>(c, matrix3_diag(a[0].as_real(), a[1].as_real(), a[2].as_real()));
@@ -196,14 +231,16 @@ void add_matrices(NativeRegistry& r) {
     return matrix_or_fail(c, matrix4_from_row_major(v), "from_row_major");
   });
   r.add("Math.Matrix4x4.from_rows", [](NativeCall& c, Args a) {
-    return matrix_or_fail(c, matrix4_from_rows(c.reals(a[0]), c.reals(a[1]), c.reals(a[2]), c.reals(a[3])), "from_rows");
+    return matrix_or_fail(c, matrix4_from_rows(c.reals(a[0]), c.reals(a[1]), c.reals(a[2]), c.reals(a[3])),
+                          "from_rows");
   });
   r.add("Math.Matrix4x4.from_columns", [](NativeCall& c, Args a) {
     return matrix_or_fail(c, matrix4_from_columns(c.reals(a[0]), c.reals(a[1]), c.reals(a[2]), c.reals(a[3])),
                           "from_columns");
   });
-  r.add("Math.Matrix4x4.from_vec3_quat",
-        [](NativeCall& c, Args a) { return make_matrix<4>(c, matrix4_from_vec3_quat(vec3(c, a[0]), quat(c, a[1]))); });
+  r.add("Math.Matrix4x4.from_vec3_quat", [](NativeCall& c, Args a) {
+    return make_matrix<4>(c, matrix4_from_vec3_quat(vec3(c, a[0]), quat(c, a[1])));
+  });
   r.add("Math.Matrix4x4.transpose", [](NativeCall& c, Args a) {
     Eigen::Matrix4d m = matrix<4>(c, a[0]).transpose();
     return make_matrix<4>(c, m);
@@ -221,7 +258,8 @@ void add_matrices(NativeRegistry& r) {
         [](NativeCall& c, Args a) { return make_matrix<4>(c, matrix<4>(c, a[0]) * matrix<4>(c, a[1])); });
 
   r.add("Math.Line.from_points", [](NativeCall& c, Args a) {
-    return c.make_with("Math.Line", {{"start", make_vec3(c, vec3(c, a[0]))}, {"end", make_vec3(c, vec3(c, a[1]))}});
+    return c.make_with("Math.Line",
+                       {{"start", make_vec3(c, vec3(c, a[0]))}, {"end", make_vec3(c, vec3(c, a[1]))}});
   });
   r.add("Math.Line.length", [](NativeCall& c, Args a) {
     return real(line_length(vec3(c, c.object(a[0], "start")), vec3(c, c.object(a[0], "end"))));
@@ -241,7 +279,8 @@ void add_functions(NativeRegistry& r) {
                                                                {"deg_to_rad", &natives::deg_to_rad}}};
   for (const auto& entry : unary) {
     Unary fn = entry.second;  // a copy: clang 14 cannot capture structured bindings
-    r.add(std::string("Math.Functions.") + entry.first, [fn](NativeCall&, Args a) { return real(fn(a[0].as_real())); });
+    r.add(std::string("Math.Functions.") + entry.first,
+          [fn](NativeCall&, Args a) { return real(fn(a[0].as_real())); });
   }
   using Reduce = double (*)(std::span<const double>);
   const std::array<std::pair<const char*, Reduce>, 6> reduce = {{{"mean", &natives::mean},
@@ -252,12 +291,15 @@ void add_functions(NativeRegistry& r) {
                                                                  {"sum", &natives::sum}}};
   for (const auto& entry : reduce) {
     Reduce fn = entry.second;
-    r.add(std::string("Math.Functions.") + entry.first, [fn](NativeCall& c, Args a) { return real(fn(c.reals(a[0]))); });
+    r.add(std::string("Math.Functions.") + entry.first,
+          [fn](NativeCall& c, Args a) { return real(fn(c.reals(a[0]))); });
   }
   r.add("Math.Functions.ceil", [](NativeCall&, Args a) { return real(std::ceil(a[0].as_real())); });
   r.add("Math.Functions.floor", [](NativeCall&, Args a) { return real(std::floor(a[0].as_real())); });
-  r.add("Math.Functions.arctan2", [](NativeCall&, Args a) { return real(arctan2(a[0].as_real(), a[1].as_real())); });
-  r.add("Math.Functions.pow", [](NativeCall&, Args a) { return real(natives::pow(a[0].as_real(), a[1].as_real())); });
+  r.add("Math.Functions.arctan2",
+        [](NativeCall&, Args a) { return real(arctan2(a[0].as_real(), a[1].as_real())); });
+  r.add("Math.Functions.pow",
+        [](NativeCall&, Args a) { return real(natives::pow(a[0].as_real(), a[1].as_real())); });
   r.add("Math.Functions.equals_approx",
         [](NativeCall&, Args a) { return Value::of_bool(equals_approx(a[0].as_real(), a[1].as_real())); });
   r.add("Math.Functions.inf", [](NativeCall&, Args) { return real(inf()); });

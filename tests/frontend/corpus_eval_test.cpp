@@ -21,7 +21,8 @@ const fs::path kAgx = fs::path(OPENPLX_CORPUS_DIR) / "agxunity";
 std::vector<std::string> corpus_files() {
   std::vector<std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(kAgx)) {
-    if (entry.path().extension() == ".openplx") files.push_back(fs::relative(entry.path(), kAgx).generic_string());
+    if (entry.path().extension() == ".openplx")
+      files.push_back(fs::relative(entry.path(), kAgx).generic_string());
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -86,7 +87,9 @@ std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
 
 INSTANTIATE_TEST_SUITE_P(AgxUnity, CorpusEval, ::testing::ValuesIn(corpus_files()), test_name);
 
-TEST(CorpusEvalInventory, SeesEveryFile) { EXPECT_EQ(corpus_files().size(), 19u); }
+TEST(CorpusEvalInventory, SeesEveryFile) {
+  EXPECT_EQ(corpus_files().size(), 19u);
+}
 
 // The signals the bundles add show up with their defaults.
 TEST(CorpusEvalValues, SignalTestShowsBundleSignalsWithDefaults) {

@@ -25,7 +25,8 @@ class SeedModels : public openplx::testing::EvalTest {};
 
 TEST_F(SeedModels, ThreeLevelSnapExampleEvaluates) {
   for (const char* model : {"World", "SnapRod", "SnapRodParent", "SnapRodParentParent"}) {
-    EXPECT_TRUE(load_file((kSeed / "01_ThreeLevelSnap.openplx").string(), model)) << model << '\n' << all_diags();
+    EXPECT_TRUE(load_file((kSeed / "01_ThreeLevelSnap.openplx").string(), model)) << model << '\n'
+                                                                                  << all_diags();
   }
   // The 0.17.8 names it uses load with warnings that name the current ones.
   expect_diag_containing(fe::DiagCode::DeprecatedName, "use `Physics3D.Interactions.MateConnector`");
@@ -103,7 +104,8 @@ TEST_F(SeedModels, BundlesDefineEverySeedModelWithItsMembers) {
       std::string qualified = ns + "." + std::string(decl.name.text);
       if (auto moved = kMovedPages.find(page); moved != kMovedPages.end()) qualified = moved->second;
       const size_t dot = qualified.rfind('.');
-      if (auto renamed = fe::renamed_model(qualified.substr(0, dot), qualified.substr(dot + 1))) qualified = *renamed;
+      if (auto renamed = fe::renamed_model(qualified.substr(0, dot), qualified.substr(dot + 1)))
+        qualified = *renamed;
       SCOPED_TRACE(entry.path().filename().string() + ": " + qualified);
       fe::ModelInfo* model = program.builtin_model(qualified);
       ASSERT_NE(model, nullptr) << "no bundle model " << qualified;

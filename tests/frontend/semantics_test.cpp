@@ -11,21 +11,21 @@ namespace fe = openplx::frontend;
 class Semantics : public openplx::testing::EvalTest {};
 
 TEST_F(Semantics, ExplicitAssignmentsAreRecordedPerAttribute) {
-  ASSERT_TRUE(load(
-      "Frame:\n"
-      "    position is Math.Vec3\n"
-      "    rotation is Math.Quat\n"
-      "Body:\n"
-      "    frame is Frame\n"
-      "    other is Frame\n"
-      "    mass is Real: 1.0\n"
-      "Scene:\n"
-      "    a is Body:\n"
-      "        frame.position.z: 0.5\n"
-      "    b is Body:\n"
-      "        mass: 2.0\n"))
+  ASSERT_TRUE(
+      load("Frame:\n"
+           "    position is Math.Vec3\n"
+           "    rotation is Math.Quat\n"
+           "Body:\n"
+           "    frame is Frame\n"
+           "    other is Frame\n"
+           "    mass is Real: 1.0\n"
+           "Scene:\n"
+           "    a is Body:\n"
+           "        frame.position.z: 0.5\n"
+           "    b is Body:\n"
+           "        mass: 2.0\n"))
       << all_diags();
-  EXPECT_TRUE(slot("a.frame")->explicit_value);      // a part of it was assigned
+  EXPECT_TRUE(slot("a.frame")->explicit_value);  // a part of it was assigned
   EXPECT_TRUE(slot("a.frame.position")->explicit_value);
   EXPECT_FALSE(slot("a.frame.rotation")->explicit_value);
   EXPECT_FALSE(slot("a.other")->explicit_value);
@@ -35,27 +35,27 @@ TEST_F(Semantics, ExplicitAssignmentsAreRecordedPerAttribute) {
 }
 
 TEST_F(Semantics, PartOfAnOwnedValueCanBeAssignedFromNearerTheRoot) {
-  ASSERT_TRUE(load(
-      "Body:\n"
-      "    position is Math.Vec3: {1, 2, 3}\n"
-      "    axis is Math.Vec3: Math.Vec3.Z_AXIS()\n"
-      "Scene:\n"
-      "    body is Body:\n"
-      "        position.z: 9\n"
-      "        axis.x: 5\n"))
+  ASSERT_TRUE(
+      load("Body:\n"
+           "    position is Math.Vec3: {1, 2, 3}\n"
+           "    axis is Math.Vec3: Math.Vec3.Z_AXIS()\n"
+           "Scene:\n"
+           "    body is Body:\n"
+           "        position.z: 9\n"
+           "        axis.x: 5\n"))
       << all_diags();
   EXPECT_EQ(value("body.position"), "{1.0, 2.0, 9.0}");
   EXPECT_EQ(value("body.axis"), "{5.0, 0.0, 1.0}");
 }
 
 TEST_F(Semantics, WholeValueFromTheOwnerBeatsPartDefaultsInTheType) {
-  ASSERT_TRUE(load(
-      "Body:\n"
-      "    position is Math.Vec3:\n"
-      "        z: 4\n"
-      "Scene:\n"
-      "    body is Body:\n"
-      "        position: {1, 1, 1}\n"))
+  ASSERT_TRUE(
+      load("Body:\n"
+           "    position is Math.Vec3:\n"
+           "        z: 4\n"
+           "Scene:\n"
+           "    body is Body:\n"
+           "        position: {1, 1, 1}\n"))
       << all_diags();
   EXPECT_EQ(value("body.position"), "{1.0, 1.0, 1.0}");
 }
@@ -87,12 +87,12 @@ TEST_F(Semantics, FirstBundleOfANameWins) {
 TEST_F(Semantics, ImportOfOpenplxFileWithAndWithoutAlias) {
   write("parts.openplx", "Wheel:\n    r is Real: 0.3\n");
   write("lib/more.openplx", "Axle:\n    l is Real: 1.2\n");
-  ASSERT_TRUE(load(
-      "import @\"parts.openplx\"\n"
-      "import @\"lib/more.openplx\" as More\n"
-      "Car:\n"
-      "    w is Wheel\n"
-      "    a is More.Axle\n"))
+  ASSERT_TRUE(
+      load("import @\"parts.openplx\"\n"
+           "import @\"lib/more.openplx\" as More\n"
+           "Car:\n"
+           "    w is Wheel\n"
+           "    a is More.Axle\n"))
       << all_diags();
   EXPECT_EQ(value("w.r"), "0.3");
   EXPECT_EQ(value("a.l"), "1.2");
@@ -121,17 +121,17 @@ TEST_F(Semantics, DidYouMeanForMembersAndNames) {
 }
 
 TEST_F(Semantics, ValuesDumpIsInDeclarationOrder) {
-  ASSERT_TRUE(load(
-      "Base:\n"
-      "    b is Int: 1\n"
-      "Leaf is Base:\n"
-      "    c is String: \"x\\ny\"\n"
-      "Root:\n"
-      "    z is Bool: true\n"
-      "    leaf is Leaf\n"
-      "    q is Math.Quat\n"
-      "    xs is Real[]: [1, 2.5]\n"
-      "    ref is Leaf: leaf\n"))
+  ASSERT_TRUE(
+      load("Base:\n"
+           "    b is Int: 1\n"
+           "Leaf is Base:\n"
+           "    c is String: \"x\\ny\"\n"
+           "Root:\n"
+           "    z is Bool: true\n"
+           "    leaf is Leaf\n"
+           "    q is Math.Quat\n"
+           "    xs is Real[]: [1, 2.5]\n"
+           "    ref is Leaf: leaf\n"))
       << all_diags();
   EXPECT_EQ(values(),
             "z = true\n"

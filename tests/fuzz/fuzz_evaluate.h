@@ -18,8 +18,8 @@ inline void evaluate_one(const uint8_t* data, size_t size) {
   namespace fe = openplx::frontend;
   fe::SourceManager sources;
   fe::DiagnosticSink sink;
-  fe::LoadRequest request{"/fuzz/input.openplx", std::nullopt, {},
-                          std::string(reinterpret_cast<const char*>(data), size)};
+  fe::LoadRequest request{
+      "/fuzz/input.openplx", std::nullopt, {}, std::string(reinterpret_cast<const char*>(data), size)};
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   if (evaluation.root == fe::kNoObject) return;
   std::ostringstream out;

@@ -7,13 +7,13 @@
 
 #include "frontend/ast_dump.h"
 #include "frontend/bundles.h"
+#include "frontend/diagnostics.h"
 #include "frontend/evaluator.h"
+#include "frontend/lexer.h"
+#include "frontend/parser.h"
 #include "frontend/pipeline.h"
 #include "frontend/program.h"
 #include "frontend/value_format.h"
-#include "frontend/diagnostics.h"
-#include "frontend/lexer.h"
-#include "frontend/parser.h"
 #include "tools/cli/atomic_file.h"
 
 #ifndef OPENPLX_VERSION
@@ -53,12 +53,13 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
 }
 
 // Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
-bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink, std::ostream& text,
-              std::ostream& err) {
+bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
+              std::ostream& text, std::ostream& err) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.input, ec)) {
     err << options.input << ": error: "
-        << (std::filesystem::is_directory(options.input, ec) ? "is a directory, not a file" : "cannot open file")
+        << (std::filesystem::is_directory(options.input, ec) ? "is a directory, not a file"
+                                                             : "cannot open file")
         << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
     return false;
   }
@@ -73,7 +74,8 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
 }  // namespace
 
 std::string usage() {
-  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast|values]\n"
+  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] "
+         "[--dump=tokens|ast|values]\n"
          "                    [--help] [--version]\n"
          "\n"
          "Reads an OpenPLX model and evaluates it. With --dump, prints the tokens, the syntax tree or the\n"
@@ -202,7 +204,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     std::string io_error;
     std::optional<fe::FileId> file_id = sources.load(options->input, io_error);
     if (!file_id) {
-      err << options->input << ": error: " << io_error << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
+      err << options->input << ": error: " << io_error << " [" << fe::code_name(fe::DiagCode::IoError)
+          << "]\n";
       return kExitInputError;
     }
     const fe::SourceFile& file = sources.file(*file_id);
