@@ -14,6 +14,9 @@
 #include "frontend/pipeline.h"
 #include "frontend/program.h"
 #include "frontend/value_format.h"
+#include "snap/physics_view.h"
+#include "snap/snap.h"
+#include "snap/snap_dump.h"
 #include "tools/cli/atomic_file.h"
 
 #ifndef OPENPLX_VERSION
@@ -65,9 +68,12 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   }
   fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
-  if (options.dump == DumpKind::Values && evaluation.root != fe::kNoObject) {
-    fe::dump_values(text, *evaluation.evaluator, evaluation.root);
-  }
+  if (evaluation.root == fe::kNoObject || sink.has_errors()) return true;
+  if (options.dump == DumpKind::Values) fe::dump_values(text, *evaluation.evaluator, evaluation.root);
+  // Assembly is part of checking a model, so it runs whether or not its frames are printed.
+  snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
+  snap::SnapResult assembled = snap::run_snap(view, sink);
+  if (options.dump == DumpKind::Snap) snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
   return true;
 }
 
@@ -75,7 +81,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
 
 std::string usage() {
   return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] "
-         "[--dump=tokens|ast|values]\n"
+         "[--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
          "Reads an OpenPLX model and evaluates it. With --dump, prints the tokens, the syntax tree or the\n"
@@ -85,7 +91,7 @@ std::string usage() {
          "  -o OUT         write the output to OUT ('-' for stdout, the default)\n"
          "  -B DIR         an extra bundle directory (repeatable)\n"
          "  --strict       treat warnings as errors\n"
-         "  --dump=KIND    tokens | ast | values\n"
+         "  --dump=KIND    tokens | ast | values | snap (world frames after assembly)\n"
          "  --help         show this text\n"
          "  --version      show the version\n"
          "\n"
@@ -146,8 +152,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
         options.dump = DumpKind::Ast;
       } else if (value == "values") {
         options.dump = DumpKind::Values;
+      } else if (value == "snap") {
+        options.dump = DumpKind::Snap;
       } else {
-        error = "unknown dump kind '" + value + "' (expected tokens, ast or values)";
+        error = "unknown dump kind '" + value + "' (expected tokens, ast, values or snap)";
         return std::nullopt;
       }
       continue;

@@ -13,7 +13,7 @@
 
 namespace openplx::cli {
 
-enum class DumpKind { None, Tokens, Ast, Values };
+enum class DumpKind { None, Tokens, Ast, Values, Snap };
 
 struct CliOptions {
   std::string input;

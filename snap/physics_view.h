@@ -1,0 +1,76 @@
+// The physics view of an evaluated model: the frame tree of systems and bodies, mate connectors with their
+// frames, and mates with their connectors and initial values. Read from the ObjectGraph by model type
+// (Physics3D.System, Physics3D.Bodies.Body, Physics3D.Interactions.MateConnector, ...Mate), so user models
+// deriving from the bundle models are recognised. Problems (a normal parallel to its main axis, a mate
+// without two connectors) are reported at the user's line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "frontend/diagnostics.h"
+#include "frontend/evaluator.h"
+#include "frontend/natives/math_rotation.h"
+
+namespace openplx::snap {
+
+using Transform = natives::Affine;  // rotate, then translate; compose(lhs, rhs) applies rhs first
+
+inline constexpr int kWorld = -1;  // the world frame: parent of the root node, owner of World connectors
+
+struct FrameNode {
+  enum class Kind { System, Body };
+  Kind kind;
+  frontend::ObjectId object;
+  int parent = kWorld;  // index into nodes, or kWorld
+  std::string path;     // instance path relative to the root ("" for the root)
+  Transform local;      // relative to the parent node (SNAP fills the undefined ones)
+  bool defined = false;  // the model assigned the transform (or a part of it); SNAP never moves it
+  bool reference = false;  // a system's reference_body: forced first when SNAP is stuck
+  frontend::SourceRange where;
+};
+
+struct Connector {
+  frontend::ObjectId object;
+  int owner = kWorld;  // node index or kWorld
+  std::string path;
+  Transform local;  // frame relative to the owner: z = main_axis, x = normal (orthogonalised), y = z × x
+  bool adaptive = false;
+  frontend::SourceRange where;
+};
+
+enum class MateType { Lock, Hinge, Prismatic, Cylindrical, Ball, Distance, ConstantVelocity, Other };
+
+struct Mate {
+  frontend::ObjectId object;
+  MateType type = MateType::Other;
+  std::string path;
+  int connectors[2] = {-1, -1};  // indices into PhysicsView::connectors; -1 when missing
+  double initial_angle = 0.0;
+  double initial_position = 0.0;
+  double initial_normal_angle = 0.0;
+  double initial_cross_angle = 0.0;
+  bool enable_snap = true;
+  frontend::SourceRange where;
+};
+
+struct PhysicsView {
+  std::vector<FrameNode> nodes;  // parents before children, in declaration order
+  std::vector<Connector> connectors;
+  std::vector<Mate> mates;
+  int root = kWorld;  // node of the root object, when it is a system or a body
+  // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
+  std::vector<std::pair<bool, int>> order;
+};
+
+// Builds the view of the tree under `root`. Requires the graph to be fully evaluated.
+PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root, frontend::DiagnosticSink& sink);
+
+// The offset a mate's free degrees of freedom take at rest: connectors[1]'s frame relative to connectors[0]'s.
+// Hinge: rotation by initial_angle about main_axis (right-handed); Prismatic: translation by initial_position
+// along it; Cylindrical: both; others: none.
+Transform joint_offset(const Mate& mate);
+
+std::string mate_type_name(MateType type);
+
+}  // namespace openplx::snap

@@ -1,0 +1,15 @@
+// `--dump=snap`: one line per system, body and mate connector of the root model, in declaration order:
+// `path position {x, y, z} rotation {x, y, z, w}`, world frame, paths relative to the root (the root itself
+// by its model name).
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "snap/snap.h"
+
+namespace openplx::snap {
+
+void dump_snap(std::ostream& out, const PhysicsView& view, const SnapResult& result, const std::string& root_name);
+
+}  // namespace openplx::snap
