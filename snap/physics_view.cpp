@@ -16,6 +16,33 @@ class ViewBuilder {
     connector_ = program.builtin_model("Physics3D.Interactions.MateConnector");
     adaptive_ = program.builtin_model("Physics3D.Interactions.AdaptiveMateConnector");
     mate_ = program.builtin_model("Physics3D.Interactions.Mate");
+    rigid_body_ = program.builtin_model("Physics3D.Bodies.RigidBody");
+    contact_geometry_ = program.builtin_model("Physics3D.Geometries.ContactGeometry");
+    visual_geometry_ = program.builtin_model("Visuals.Geometries.Geometry");
+    interaction1d_ = program.builtin_model("Physics.Interactions.Interaction1DOF");
+    input_ = program.builtin_model("Physics.Signals.Input");
+    output_ = program.builtin_model("Physics.Signals.Output");
+    const std::pair<const char*, Geometry::Shape> shapes[] = {
+        {"Box", Geometry::Shape::Box},         {"Sphere", Geometry::Shape::Sphere},
+        {"Cylinder", Geometry::Shape::Cylinder}, {"Capsule", Geometry::Shape::Capsule},
+        {"Plane", Geometry::Shape::Plane},     {"ConvexMesh", Geometry::Shape::ConvexMesh},
+        {"TriMesh", Geometry::Shape::TriMesh}, {"ExternalTriMeshGeometry", Geometry::Shape::ExternalMesh}};
+    for (const char* bundle : {"Physics3D.Geometries.", "Visuals.Geometries."}) {
+      for (const auto& [name, shape] : shapes) {
+        if (fe::ModelInfo* m = program.builtin_model(std::string(bundle) + name)) shapes_.emplace_back(m, shape);
+      }
+    }
+    using K = Interaction1D::Kind;
+    const std::pair<const char*, K> kinds1d[] = {
+        {"LinearSpring", K::LinearSpring},       {"TorsionSpring", K::TorsionSpring},
+        {"LinearRange", K::LinearRange},         {"RotationalRange", K::RotationalRange},
+        {"LinearVelocityMotor", K::LinearVelocityMotor}, {"RotationalVelocityMotor", K::RotationalVelocityMotor},
+        {"ForceMotor", K::ForceMotor},           {"TorqueMotor", K::TorqueMotor}};
+    for (const auto& [name, kind] : kinds1d) {
+      if (fe::ModelInfo* m = program.builtin_model(std::string("Physics3D.Interactions.") + name)) {
+        kinds1d_.emplace_back(m, kind);
+      }
+    }
     const std::pair<const char*, MateType> kinds[] = {
         {"Lock", MateType::Lock},         {"Hinge", MateType::Hinge},
         {"Prismatic", MateType::Prismatic}, {"Cylindrical", MateType::Cylindrical},
@@ -43,6 +70,7 @@ class ViewBuilder {
       visit(item.object, item.node, stack, false);
     }
     for (Mate& mate : view_.mates) resolve_connectors(mate);
+    for (Interaction1D& interaction : view_.interactions) attach(interaction);
     return std::move(view_);
   }
 
@@ -57,6 +85,12 @@ class ViewBuilder {
       add_connector(id, enclosing);
     } else if (obj.type->is_subtype_of(mate_)) {
       add_mate(id);
+    } else if (is(obj, contact_geometry_) || is(obj, visual_geometry_)) {
+      add_geometry(id, enclosing);
+    } else if (is(obj, interaction1d_)) {
+      add_interaction(id);
+    } else if (is(obj, input_) || is(obj, output_)) {
+      add_signal(id);
     }
     // Children in reverse so the stack pops them in declaration order.
     std::vector<fe::ObjectId> children;
@@ -65,6 +99,110 @@ class ViewBuilder {
       if (slot.owns && slot.value.kind == fe::Value::Kind::Object) children.push_back(slot.value.object);
     }
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, node});
+  }
+
+  static bool is(const fe::Object& obj, const fe::ModelInfo* model) { return model && obj.type->is_subtype_of(model); }
+
+  double real(fe::ObjectId id, std::string_view name, double fallback = 0.0) {
+    const fe::Value* v = ev_.value(id, name);
+    return v && v->is_number() ? v->as_real() : fallback;
+  }
+  fe::ObjectId object(fe::ObjectId id, std::string_view name) {
+    const fe::Value* v = ev_.value(id, name);
+    return v && v->kind == fe::Value::Kind::Object ? v->object : fe::kNoObject;
+  }
+
+  void read_body(fe::ObjectId id, BodyProperties& body) {
+    if (const fe::Value* d = ev_.value(id, "is_dynamic"); d && d->kind == fe::Value::Kind::Bool) body.dynamic = d->bool_value;
+    if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
+      body.mass = real(inertia, "mass");
+      if (fe::ObjectId tensor = object(inertia, "tensor"); tensor != fe::kNoObject) {
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) body.inertia(r, c) = real(tensor, "e" + std::to_string(r) + std::to_string(c));
+        }
+      }
+    }
+    if (fe::ObjectId kinematics = object(id, "kinematics"); kinematics != fe::kNoObject) {
+      if (fe::ObjectId cm = object(kinematics, "local_cm_transform"); cm != fe::kNoObject) body.cm = affine(cm);
+    }
+  }
+
+  void add_geometry(fe::ObjectId id, int owner) {
+    const fe::Object& obj = ev_.graph().at(id);
+    Geometry g;
+    g.object = id;
+    g.visual = is(obj, visual_geometry_);
+    g.owner = owner;
+    g.path = ev_.graph().path(id);
+    g.where = where_of(id);
+    for (const auto& [model, shape] : shapes_) {
+      if (obj.type->is_subtype_of(model)) g.shape = shape;
+    }
+    if (fe::ObjectId t = object(id, "local_transform"); t != fe::kNoObject) g.local = affine(t);
+    switch (g.shape) {
+      case Geometry::Shape::Box: g.size = vec3(id, "size"); break;
+      case Geometry::Shape::Sphere: g.size.x() = real(id, "radius"); break;
+      case Geometry::Shape::Cylinder:
+      case Geometry::Shape::Capsule: g.size = {real(id, "radius"), real(id, "height"), 0.0}; break;
+      default: break;
+    }
+    if (const fe::Value* path = ev_.value(id, "path"); path && path->kind == fe::Value::Kind::String) {
+      g.file = path->string_value;
+    }
+    if (const fe::Value* scale = ev_.value(id, "scale"); scale && scale->kind == fe::Value::Kind::Object) {
+      g.scale = vec3(id, "scale");
+    } else if (scale && scale->is_number()) {
+      g.scale = Eigen::Vector3d::Constant(scale->as_real());
+    }
+    g.material = object(id, "material");
+    if (const fe::Value* c = ev_.value(id, "enable_collisions"); c && c->kind == fe::Value::Kind::Bool) g.collides = c->bool_value;
+    if (const fe::Value* m = ev_.value(id, "include_in_mass_properties"); m && m->kind == fe::Value::Kind::Bool) {
+      g.in_mass = m->bool_value;
+    }
+    if (g.visual) g.collides = g.in_mass = false;
+    view_.geometries.push_back(std::move(g));
+  }
+
+  void add_interaction(fe::ObjectId id) {
+    Interaction1D interaction;
+    interaction.object = id;
+    interaction.path = ev_.graph().path(id);
+    interaction.where = where_of(id);
+    for (const auto& [model, kind] : kinds1d_) {
+      if (ev_.graph().at(id).type->is_subtype_of(model)) interaction.kind = kind;
+    }
+    view_.interactions.push_back(std::move(interaction));
+  }
+
+  // A 1-dof interaction acts on the mate whose connectors it shares (in either order).
+  void attach(Interaction1D& interaction) {
+    const fe::Value* list = ev_.value(interaction.object, "connectors");
+    if (!list || list->kind != fe::Value::Kind::Array || list->array.size() != 2) return;
+    const fe::Value& a = list->array[0];
+    const fe::Value& b = list->array[1];
+    for (size_t m = 0; m < view_.mates.size(); ++m) {
+      const fe::Value* mate_list = ev_.value(view_.mates[m].object, "connectors");
+      if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array.size() != 2) continue;
+      const fe::Value& x = mate_list->array[0];
+      const fe::Value& y = mate_list->array[1];
+      const bool same = (x.object == a.object && y.object == b.object) || (x.object == b.object && y.object == a.object);
+      if (same && a.kind == fe::Value::Kind::Object && b.kind == fe::Value::Kind::Object) {
+        interaction.mate = static_cast<int>(m);
+        return;
+      }
+    }
+  }
+
+  void add_signal(fe::ObjectId id) {
+    const fe::Object& obj = ev_.graph().at(id);
+    Signal signal;
+    signal.object = id;
+    signal.input = is(obj, input_);
+    signal.path = ev_.graph().path(id);
+    signal.type = obj.type->qualified;
+    signal.source = object(id, "source");
+    if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool) signal.enabled = e->bool_value;
+    view_.signals.push_back(std::move(signal));
   }
 
   fe::SourceRange where_of(fe::ObjectId id) {
@@ -125,6 +263,7 @@ class ViewBuilder {
     node.path = ev_.graph().path(id);
     node.defined = read_transform(id, node.local) || is_root;  // the root frame never moves
     node.where = where_of(id);
+    if (node.kind == FrameNode::Kind::Body) read_body(id, node.body);
     const int index = static_cast<int>(view_.nodes.size());
     if (is_root) view_.root = index;
     node_of_[id] = index;
@@ -230,7 +369,15 @@ class ViewBuilder {
   fe::ModelInfo* connector_ = nullptr;
   fe::ModelInfo* adaptive_ = nullptr;
   fe::ModelInfo* mate_ = nullptr;
+  fe::ModelInfo* rigid_body_ = nullptr;
+  fe::ModelInfo* contact_geometry_ = nullptr;
+  fe::ModelInfo* visual_geometry_ = nullptr;
+  fe::ModelInfo* interaction1d_ = nullptr;
+  fe::ModelInfo* input_ = nullptr;
+  fe::ModelInfo* output_ = nullptr;
   std::vector<std::pair<fe::ModelInfo*, MateType>> mate_kinds_;
+  std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;
+  std::vector<std::pair<fe::ModelInfo*, Interaction1D::Kind>> kinds1d_;
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;

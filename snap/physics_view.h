@@ -18,6 +18,14 @@ using Transform = natives::Affine;  // rotate, then translate; compose(lhs, rhs)
 
 inline constexpr int kWorld = -1;  // the world frame: parent of the root node, owner of World connectors
 
+// Mass properties of a body, as the model gives them (mass 0 / zero tensor: compute from the geometry).
+struct BodyProperties {
+  double mass = 0.0;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the CM frame's origin, in its axes
+  Transform cm;                                       // relative to the body frame
+  bool dynamic = true;
+};
+
 struct FrameNode {
   enum class Kind { System, Body };
   Kind kind;
@@ -27,7 +35,49 @@ struct FrameNode {
   Transform local;      // relative to the parent node (SNAP fills the undefined ones)
   bool defined = false;  // the model assigned the transform (or a part of it); SNAP never moves it
   bool reference = false;  // a system's reference_body: forced first when SNAP is stuck
+  BodyProperties body;     // Body nodes
   frontend::SourceRange where;
+};
+
+// A collision or visual shape attached to a body (or a system).
+struct Geometry {
+  enum class Shape { Box, Sphere, Cylinder, Capsule, Plane, ConvexMesh, TriMesh, ExternalMesh, Other };
+  frontend::ObjectId object;
+  Shape shape = Shape::Other;
+  bool visual = false;  // a Visuals geometry: drawn, never collides, no mass
+  int owner = kWorld;
+  std::string path;
+  Transform local;  // relative to the owner
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box: full extents; sphere: (r); cylinder, capsule: (r, h)
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  std::string file;                                 // external mesh
+  frontend::ObjectId material = frontend::kNoObject;
+  bool collides = true;
+  bool in_mass = true;
+  frontend::SourceRange where;
+};
+
+// Springs, ranges and motors acting on the degree of freedom of a mate's connectors.
+struct Interaction1D {
+  enum class Kind {
+    LinearSpring, TorsionSpring, LinearRange, RotationalRange, LinearVelocityMotor, RotationalVelocityMotor,
+    ForceMotor, TorqueMotor, Other
+  };
+  frontend::ObjectId object;
+  Kind kind = Kind::Other;
+  std::string path;
+  int mate = -1;  // the mate with the same two connectors, -1 when none
+  frontend::SourceRange where;
+};
+
+// An OpenPLX input or output signal of the tree.
+struct Signal {
+  frontend::ObjectId object;
+  bool input = false;
+  std::string path;
+  std::string type;  // its model, e.g. "Physics.Signals.AngleOutput"
+  frontend::ObjectId source = frontend::kNoObject;
+  bool enabled = true;
 };
 
 struct Connector {
@@ -58,6 +108,9 @@ struct PhysicsView {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
   std::vector<Mate> mates;
+  std::vector<Geometry> geometries;
+  std::vector<Interaction1D> interactions;
+  std::vector<Signal> signals;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;
