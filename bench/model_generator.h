@@ -56,3 +56,42 @@ inline std::string generate_instances(size_t groups, size_t parts_per_group) {
 }
 
 }  // namespace openplx::bench
+
+namespace openplx::bench {
+
+// A Physics3D scene of `bodies` links: a chain (each link hinged to the previous one, the first to the
+// world) when `chain` is true, else a wide tree of `bodies / 10` trunks with 9 branches each. Every link has
+// a box, two connectors 1 m apart and a hinge; nothing is placed by hand, so SNAP places every body.
+inline std::string generate_mechanism(size_t bodies, bool chain) {
+  std::string out =
+      "Link is Physics3D.Bodies.RigidBody:\n"
+      "    inertia.mass: 1\n"
+      "    geometry is Physics3D.Geometries.Box:\n"
+      "        size: {0.1, 0.1, 1}\n"
+      "    bottom is Physics3D.Interactions.MateConnector:\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n"
+      "    top is Physics3D.Interactions.MateConnector:\n"
+      "        position: {0, 0, 1}\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n"
+      "Scene is Physics3D.System:\n"
+      "    base is Physics3D.Interactions.MateConnector:\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n";
+  for (size_t i = 0; i < bodies; ++i) out += "    l" + std::to_string(i) + " is Link\n";
+  for (size_t i = 0; i < bodies; ++i) {
+    std::string parent;
+    if (chain) {
+      parent = i == 0 ? "base" : "l" + std::to_string(i - 1) + ".top";
+    } else {
+      const size_t trunk = i / 10 * 10;
+      parent = i == trunk ? "base" : "l" + std::to_string(trunk) + ".top";
+    }
+    out += "    h" + std::to_string(i) + " is Physics3D.Interactions.Hinge:\n        connectors: [" + parent + ", l" +
+           std::to_string(i) + ".bottom]\n        initial_angle: 0.01\n";
+  }
+  return out;
+}
+
+}  // namespace openplx::bench

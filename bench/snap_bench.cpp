@@ -1,0 +1,100 @@
+// SNAP scaling: wide trees of 100 to 10,000 bodies and a chain 90 deep, all left for SNAP to place.
+// BM_Snap* time the assembly alone on a physics view built directly; BM_EvaluateAndSnap* time the whole
+// front end (parse, evaluate every attribute of the bundle models, build the view, SNAP) on the same shapes.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "bench/model_generator.h"
+#include "frontend/pipeline.h"
+#include "snap/physics_view.h"
+#include "snap/snap.h"
+
+namespace fe = openplx::frontend;
+namespace sn = openplx::snap;
+
+namespace {
+
+// The view generate_mechanism() would give: links with connectors at 0 and 1 m, hinged to a base
+// connector (trunks, or the first chain link) or to the previous link's top.
+sn::PhysicsView mechanism_view(size_t bodies, bool chain) {
+  sn::PhysicsView view;
+  sn::FrameNode root{sn::FrameNode::Kind::System, 0};
+  root.defined = true;
+  view.nodes.push_back(root);
+  view.root = 0;
+  sn::Connector base;
+  base.owner = 0;
+  base.local = *openplx::natives::affine_from_axes(Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+  view.connectors.push_back(base);
+  for (size_t i = 0; i < bodies; ++i) {
+    sn::FrameNode link{sn::FrameNode::Kind::Body, static_cast<fe::ObjectId>(i + 1)};
+    link.parent = 0;
+    view.nodes.push_back(link);
+    sn::Connector bottom = base, top = base;
+    bottom.owner = top.owner = static_cast<int>(i + 1);
+    top.local.position = {0, 0, 1};
+    view.connectors.push_back(bottom);
+    view.connectors.push_back(top);
+    sn::Mate hinge;
+    hinge.type = sn::MateType::Hinge;
+    hinge.initial_angle = 0.01;
+    const size_t trunk = i / 10 * 10;
+    const int parent_top = chain ? (i == 0 ? 0 : static_cast<int>(2 * i)) : (i == trunk ? 0 : static_cast<int>(2 * trunk + 2));
+    hinge.connectors[0] = parent_top;
+    hinge.connectors[1] = static_cast<int>(2 * i + 1);
+    view.mates.push_back(hinge);
+  }
+  return view;
+}
+
+void BM_SnapWideTree(benchmark::State& state) {
+  const auto bodies = static_cast<size_t>(state.range(0));
+  for (auto _ : state) {
+    state.PauseTiming();
+    sn::PhysicsView view = mechanism_view(bodies, false);
+    fe::DiagnosticSink sink;
+    state.ResumeTiming();
+    sn::SnapResult result = sn::run_snap(view, sink);
+    benchmark::DoNotOptimize(result.node_world.data());
+  }
+  state.counters["bodies"] = static_cast<double>(bodies);
+}
+
+void BM_SnapChain(benchmark::State& state) {
+  const auto bodies = static_cast<size_t>(state.range(0));
+  for (auto _ : state) {
+    state.PauseTiming();
+    sn::PhysicsView view = mechanism_view(bodies, true);
+    fe::DiagnosticSink sink;
+    state.ResumeTiming();
+    sn::SnapResult result = sn::run_snap(view, sink);
+    benchmark::DoNotOptimize(result.node_world.data());
+  }
+  state.counters["depth"] = static_cast<double>(bodies);
+}
+
+void BM_EvaluateAndSnap(benchmark::State& state) {
+  const auto bodies = static_cast<size_t>(state.range(0));
+  const bool chain = state.range(1) != 0;
+  const std::string path = (std::filesystem::temp_directory_path() / "openplx_snap_bench.openplx").string();
+  std::ofstream(path) << openplx::bench::generate_mechanism(bodies, chain);
+  for (auto _ : state) {
+    fe::SourceManager sources;
+    fe::DiagnosticSink sink;
+    fe::Evaluation evaluation = fe::evaluate_file({path, std::nullopt, {}, std::nullopt}, sources, sink);
+    sn::PhysicsView view = sn::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
+    sn::SnapResult result = sn::run_snap(view, sink);
+    if (sink.has_errors()) state.SkipWithError("generated model has errors");
+    benchmark::DoNotOptimize(result.node_world.data());
+  }
+  state.counters["bodies"] = static_cast<double>(bodies);
+}
+
+}  // namespace
+
+BENCHMARK(BM_SnapWideTree)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SnapChain)->Arg(90)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EvaluateAndSnap)->Args({100, 0})->Args({1000, 0})->Args({90, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_MAIN();
