@@ -13,8 +13,10 @@ namespace {
 
 // Deep enough for any real model (MuJoCo stops near 100 levels); a recursive model hits it quickly.
 constexpr uint32_t kMaxInstanceDepth = 1000;
-// How often one attribute declaration may nest inside itself along an ownership chain.
-constexpr uint32_t kMaxDeclarationRepeats = 8;
+// How often owned default instances of one model may nest inside each other along an ownership chain.
+constexpr uint32_t kMaxTypeRepeats = 3;
+// Instances in one evaluation: far above any real model, low enough to stop a runaway before memory does.
+constexpr size_t kMaxObjects = 20'000'000;
 // Attributes whose values depend on each other in a chain this long would overflow the stack.
 constexpr int kMaxEvalDepth = 1000;
 
@@ -586,15 +588,20 @@ Value Evaluator::owned_default(ObjectId id, Slot& slot) {
   if (model->is_const) return Value::of_object(singleton(model));  // an alias of the singleton
   // A model that owns an instance of itself by default never ends. Owners may stop the recursion by
   // assigning a reference a few levels down, so allow a handful of repeats of one declaration.
+  // Count by model, not by declaration: several attributes of a model's own type would otherwise nest
+  // exponentially before any one declaration repeats.
   uint32_t repeats = 0;
   for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) {
-    repeats += graph_.at(cur).created_by == slot.declaration;
+    repeats += graph_.at(cur).created_by && graph_.at(cur).type == model;
   }
-  if (repeats >= kMaxDeclarationRepeats || graph_.at(id).depth + 1 > kMaxInstanceDepth) {
+  if (repeats >= kMaxTypeRepeats || graph_.at(id).depth + 1 > kMaxInstanceDepth ||
+      graph_.objects.size() >= kMaxObjects) {
     sink_.report(DiagCode::EvaluationTooDeep, slot.declaration->member->range,
-                 "the instance tree does not end at " + slot_path(id, slot.name) + ": " + model->qualified +
-                     " seems to contain itself (" + std::to_string(repeats) + " nested instances of `" +
-                     std::string(slot.name) + "`)");
+                 graph_.objects.size() >= kMaxObjects
+                     ? "the model needs more than " + std::to_string(kMaxObjects) + " instances at " +
+                           slot_path(id, slot.name)
+                     : "the instance tree does not end at " + slot_path(id, slot.name) + ": " + model->qualified +
+                           " contains itself (" + std::to_string(repeats) + " nested owned instances)");
     return Value::error();
   }
   const std::string name(slot.name);
