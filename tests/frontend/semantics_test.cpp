@@ -145,7 +145,7 @@ TEST_F(Semantics, ValuesDumpIsInDeclarationOrder) {
 
 TEST_F(Semantics, RecursiveOwnershipIsAnErrorNotACrash) {
   EXPECT_FALSE(load("Node:\n    child is Node\n"));
-  expect_diag_containing(fe::DiagCode::EvaluationTooDeep, "contain itself");
+  expect_diag_containing(fe::DiagCode::EvaluationTooDeep, "Node contains itself");
 }
 
 TEST_F(Semantics, LongDependencyChainIsAnErrorNotACrash) {
