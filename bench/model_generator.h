@@ -88,8 +88,8 @@ inline std::string generate_mechanism(size_t bodies, bool chain) {
       const size_t trunk = i / 10 * 10;
       parent = i == trunk ? "base" : "l" + std::to_string(trunk) + ".top";
     }
-    out += "    h" + std::to_string(i) + " is Physics3D.Interactions.Hinge:\n        connectors: [" + parent + ", l" +
-           std::to_string(i) + ".bottom]\n        initial_angle: 0.01\n";
+    out += "    h" + std::to_string(i) + " is Physics3D.Interactions.Hinge:\n        connectors: [" + parent +
+           ", l" + std::to_string(i) + ".bottom]\n        initial_angle: 0.01\n";
   }
   return out;
 }

@@ -26,7 +26,8 @@ sn::PhysicsView mechanism_view(size_t bodies, bool chain) {
   view.root = 0;
   sn::Connector base;
   base.owner = 0;
-  base.local = *openplx::natives::affine_from_axes(Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+  base.local = *openplx::natives::affine_from_axes(Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
+                                                   Eigen::Vector3d::Zero());
   view.connectors.push_back(base);
   for (size_t i = 0; i < bodies; ++i) {
     sn::FrameNode link{sn::FrameNode::Kind::Body, static_cast<fe::ObjectId>(i + 1)};
@@ -41,7 +42,8 @@ sn::PhysicsView mechanism_view(size_t bodies, bool chain) {
     hinge.type = sn::MateType::Hinge;
     hinge.initial_angle = 0.01;
     const size_t trunk = i / 10 * 10;
-    const int parent_top = chain ? (i == 0 ? 0 : static_cast<int>(2 * i)) : (i == trunk ? 0 : static_cast<int>(2 * trunk + 2));
+    const int parent_top =
+        chain ? (i == 0 ? 0 : static_cast<int>(2 * i)) : (i == trunk ? 0 : static_cast<int>(2 * trunk + 2));
     hinge.connectors[0] = parent_top;
     hinge.connectors[1] = static_cast<int>(2 * i + 1);
     view.mates.push_back(hinge);
@@ -96,5 +98,10 @@ void BM_EvaluateAndSnap(benchmark::State& state) {
 
 BENCHMARK(BM_SnapWideTree)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SnapChain)->Arg(90)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EvaluateAndSnap)->Args({100, 0})->Args({1000, 0})->Args({90, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EvaluateAndSnap)
+    ->Args({100, 0})
+    ->Args({1000, 0})
+    ->Args({90, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_MAIN();

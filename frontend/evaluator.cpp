@@ -176,23 +176,6 @@ Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_vi
   return {};
 }
 
-std::vector<Binding> Evaluator::find_all_becomes(const std::vector<Level>& levels, std::string_view slot) {
-  // Every `becomes` of the winning level: traits of one model may each specialise the same attribute.
-  std::vector<Binding> found;
-  for (uint32_t i = 0; i < levels.size() && found.empty(); ++i) {
-    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
-      auto it = model->by_parent.find(levels[i].rel);
-      if (it == model->by_parent.end()) continue;
-      for (uint32_t index : it->second) {
-        const Entry& e = model->entries[index];
-        if (e.kind == Entry::Kind::Becomes && e.path.back() == slot)
-          found.push_back({&e, model, levels[i].object, i});
-      }
-    }
-  }
-  return found;
-}
-
 Type Evaluator::merged_becomes_type(const std::vector<Binding>& all) {
   Type merged = resolve_type(all.front().model->doc, all.front().entry->member->type);
   for (size_t k = 1; k < all.size() && merged.kind == TypeKind::Model; ++k) {
@@ -233,14 +216,18 @@ bool Evaluator::is_renamed_to(const Object& object, std::string_view written, st
   return current && *current == slot && !object.index.count(written);
 }
 
-bool Evaluator::touched_below(const std::vector<Level>& levels, std::string_view slot) const {
-  for (const Level& level : levels) {
+const Entry* Evaluator::entry_below(ObjectId id, std::string_view slot) const {
+  // Only on the error path: the first entry (not an annotation) on a part of `slot`, at any level.
+  for (const Level& level : levels_of(id)) {
     const std::string key = join_key(level.rel, slot);
     for (ModelInfo* model : graph_.at(level.object).type->linearization) {
-      if (model->assigned_prefixes.count(key)) return true;
+      auto it = model->prefixes.find(key);
+      if (it != model->prefixes.end() && model->entries[it->second].kind != Entry::Kind::Annotation) {
+        return &model->entries[it->second];
+      }
     }
   }
-  return false;
+  return nullptr;
 }
 
 ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name) {
@@ -255,20 +242,43 @@ ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name
 }
 
 void Evaluator::build_slots(ObjectId id) {
-  std::vector<Level> levels = levels_of(id);
-  // `with` lines in a nested block add traits to this one instance.
-  std::vector<ModelInfo*> extra_traits;
-  for (size_t i = 0; i + 1 < levels.size(); ++i) {
+  const std::vector<Level> levels = levels_of(id);
+  const uint32_t own_level = static_cast<uint32_t>(levels.size() - 1);
+  // Every entry aimed at this instance's own attributes, in priority order: the level nearest the root
+  // first, then the most derived model of that level's type. Built once, so each attribute below is a
+  // hash lookup instead of a walk over all levels.
+  std::vector<Binding> ordered;
+  std::unordered_map<std::string_view, std::vector<uint32_t>> by_name;
+  std::unordered_map<std::string_view, bool> below;  // attributes with entries on their parts: assigned?
+  std::vector<std::pair<const Entry*, ModelInfo*>> annotations;
+  for (uint32_t i = 0; i < levels.size(); ++i) {
     for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
-      auto it = model->by_parent.find(levels[i].rel);
-      if (it == model->by_parent.end()) continue;
-      for (uint32_t index : it->second) {
-        const Entry& e = model->entries[index];
-        if (e.kind != Entry::Kind::WithTrait) continue;
-        ModelInfo* trait = program_.resolve_model_name(model->doc, e.member->path);
-        if (trait && program_.resolve(trait) && trait->is_trait) extra_traits.push_back(trait);
+      if (auto it = model->by_parent.find(levels[i].rel); it != model->by_parent.end()) {
+        for (uint32_t index : it->second) {
+          const Entry& e = model->entries[index];
+          by_name[e.path.back()].push_back(static_cast<uint32_t>(ordered.size()));
+          ordered.push_back({&e, model, levels[i].object, i});
+        }
+      }
+      if (auto it = model->children_below.find(levels[i].rel); it != model->children_below.end()) {
+        for (const auto& [name, assigned] : it->second) below[name] = below[name] || assigned;
+      }
+      if (auto it = model->annotations_below.find(levels[i].rel); it != model->annotations_below.end()) {
+        for (uint32_t index : it->second) annotations.emplace_back(&model->entries[index], model);
       }
     }
+  }
+  auto candidates = [&](std::string_view name) -> const std::vector<uint32_t>* {
+    auto it = by_name.find(name);
+    return it == by_name.end() ? nullptr : &it->second;
+  };
+
+  // `with` lines in a nested block add traits to this one instance.
+  std::vector<ModelInfo*> extra_traits;
+  for (const Binding& b : ordered) {
+    if (b.entry->kind != Entry::Kind::WithTrait || b.level == own_level) continue;
+    ModelInfo* trait = program_.resolve_model_name(b.model->doc, b.entry->member->path);
+    if (trait && program_.resolve(trait) && trait->is_trait) extra_traits.push_back(trait);
   }
   if (!extra_traits.empty()) {
     graph_.at(id).type = program_.make_trait_extension(graph_.at(id).type, std::move(extra_traits));
@@ -289,7 +299,7 @@ void Evaluator::build_slots(ObjectId id) {
     obj.index.emplace(name, static_cast<uint32_t>(obj.slots.size()));
     obj.slots.push_back(std::move(slot));
   };
-  // Declaration order: the root-most base first, then traits, then the model itself.
+  // Declaration order: the root-most base first, then traits, then the model itself...
   const auto& lin = obj.type->linearization;
   for (auto it = lin.rbegin(); it != lin.rend(); ++it) {
     auto found = (*it)->by_parent.find("");
@@ -299,50 +309,51 @@ void Evaluator::build_slots(ObjectId id) {
       if (e.kind == Entry::Kind::Declare) add_slot(e, *it);
     }
   }
-  // Attributes added by the nested blocks of owners.
-  for (size_t i = 0; i + 1 < levels.size(); ++i) {
-    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
-      auto it = model->by_parent.find(levels[i].rel);
-      if (it == model->by_parent.end()) continue;
-      for (uint32_t index : it->second) {
-        if (model->entries[index].kind == Entry::Kind::Declare) add_slot(model->entries[index], model);
-      }
-    }
+  // ...then attributes added by the nested blocks of owners.
+  for (const Binding& b : ordered) {
+    if (b.entry->kind == Entry::Kind::Declare && b.level != own_level) add_slot(*b.entry, b.model);
   }
   // Entries aimed at attributes this instance does not have.
-  for (const Level& level : levels) {
-    for (ModelInfo* model : graph_.at(level.object).type->linearization) {
-      auto it = model->by_parent.find(level.rel);
-      if (it == model->by_parent.end()) continue;
-      for (uint32_t index : it->second) {
-        const Entry& e = model->entries[index];
-        if (e.kind == Entry::Kind::Annotation || e.kind == Entry::Kind::WithTrait) continue;
-        if (obj.index.count(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
-        if (std::optional<std::string_view> current = renamed_attribute(e.path.back());
-            current && obj.index.count(*current)) {
-          sink_.report(
-              DiagCode::DeprecatedName, e.member->path.range,
-              "`" + std::string(e.path.back()) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
-          continue;
-        }
-        std::vector<std::string> names;
-        for (const Slot& s : obj.slots) names.emplace_back(s.name);
-        std::string message =
-            "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
-        std::string near = Program::suggestion(e.path.back(), names);
-        if (!near.empty()) message += "; did you mean `" + near + "`?";
-        const QualifiedName& path = e.member->path;
-        sink_.report(DiagCode::UnknownAttribute,
-                     path.parts.empty() ? e.member->range : path.parts.back().range, message);
-      }
+  for (const Binding& b : ordered) {
+    const Entry& e = *b.entry;
+    if (e.kind == Entry::Kind::Annotation || e.kind == Entry::Kind::WithTrait) continue;
+    if (obj.index.count(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
+    if (std::optional<std::string_view> current = renamed_attribute(e.path.back());
+        current && obj.index.count(*current)) {
+      sink_.report(
+          DiagCode::DeprecatedName, e.member->path.range,
+          "`" + std::string(e.path.back()) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
+      continue;
     }
+    std::vector<std::string> names;
+    for (const Slot& s : obj.slots) names.emplace_back(s.name);
+    std::string message = "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
+    std::string near = Program::suggestion(e.path.back(), names);
+    if (!near.empty()) message += "; did you mean `" + near + "`?";
+    const QualifiedName& path = e.member->path;
+    sink_.report(DiagCode::UnknownAttribute, path.parts.empty() ? e.member->range : path.parts.back().range,
+                 message);
   }
   // Types, `becomes`, bindings and annotations.
   for (Slot& slot : obj.slots) {
-    const Entry& decl = *slot.declaration;
-    slot.declared_type = resolve_type(slot.declared_in->doc, decl.member->type);
+    // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
+    std::vector<uint32_t> mine;
+    if (const auto* list = candidates(slot.name)) mine = *list;
+    for (const auto& [old_name, list] : by_name) {
+      if (old_name != slot.name && is_renamed_to(obj, old_name, slot.name))
+        mine.insert(mine.end(), list.begin(), list.end());
+    }
+    std::sort(mine.begin(), mine.end());  // back in priority order
+
+    slot.declared_type = declared_type(*slot.declaration, slot.declared_in);
     slot.type = slot.declared_type;
-    std::vector<Binding> all_becomes = find_all_becomes(levels, slot.name);
+    std::vector<Binding> all_becomes;
+    for (uint32_t k : mine) {
+      const Binding& b = ordered[k];
+      if (b.entry->kind != Entry::Kind::Becomes) continue;
+      if (!all_becomes.empty() && all_becomes.front().level != b.level) break;  // only the winning level
+      all_becomes.push_back(b);
+    }
     if (!all_becomes.empty()) {
       const Binding& becomes = all_becomes.front();
       slot.becomes = becomes;
@@ -368,25 +379,44 @@ void Evaluator::build_slots(ObjectId id) {
       }
       slot.type = narrowed;
     }
-    slot.binding = find_binding(levels, slot.name, Entry::Kind::Value, true);
-    slot.explicit_value = (slot.binding.entry && !slot.binding.entry->from_declaration &&
-                           slot.binding.entry->kind == Entry::Kind::Value) ||
-                          touched_below(levels, slot.name);
-    for (auto level = levels.rbegin(); level != levels.rend(); ++level) {
-      const std::string key = join_key(level->rel, slot.name);
-      const auto& chain = graph_.at(level->object).type->linearization;
-      for (auto m = chain.rbegin(); m != chain.rend(); ++m) {
-        auto it = (*m)->by_parent.find(key);
-        if (it == (*m)->by_parent.end()) continue;
-        for (uint32_t index : it->second) {
-          const Entry& e = (*m)->entries[index];
-          if (e.kind == Entry::Kind::Annotation) {
-            slot.annotations[std::string(e.path.back())] = {*e.value, &(*m)->doc->doc};
-          }
+    // Assignments anywhere beat declaration defaults.
+    slot.binding = {};
+    for (uint32_t k : mine) {
+      if (ordered[k].entry->kind == Entry::Kind::Value) {
+        slot.binding = ordered[k];
+        break;
+      }
+    }
+    if (!slot.binding.entry) {
+      for (uint32_t k : mine) {
+        const Entry& e = *ordered[k].entry;
+        if (e.kind == Entry::Kind::Declare && e.value.has_value()) {
+          slot.binding = ordered[k];
+          break;
         }
       }
     }
+    auto part = below.find(slot.name);
+    slot.entries_below = part != below.end();
+    slot.explicit_value = (slot.binding.entry && slot.binding.entry->kind == Entry::Kind::Value) ||
+                          (slot.entries_below && part->second);
   }
+  // Annotations: the entry nearest the root (then the most derived) wins, so apply in reverse.
+  for (auto it = annotations.rbegin(); it != annotations.rend(); ++it) {
+    const Entry& e = *it->first;
+    auto slot = obj.index.find(e.path[e.path.size() - 2]);
+    if (slot != obj.index.end()) {
+      obj.slots[slot->second].annotations[std::string(e.path.back())] = {*e.value, &it->second->doc->doc};
+    }
+  }
+}
+
+Type Evaluator::declared_type(const Entry& declaration, ModelInfo* model) {
+  auto it = declared_types_.find(&declaration);
+  if (it != declared_types_.end()) return it->second;
+  Type type = resolve_type(model->doc, declaration.member->type);
+  declared_types_.emplace(&declaration, type);
+  return type;
 }
 
 ObjectId Evaluator::instantiate_root(ModelInfo* model) {
@@ -509,7 +539,6 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   }
   slot->state = Slot::State::Evaluating;
   ++eval_depth_;
-  const std::vector<Level> levels = levels_of(id);
   Value result;
   bool owns = false;
   const Type type = slot->type;
@@ -546,29 +575,20 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   }
   slot = &graph_.at(id).slots[slot_index];
   // Assignments to parts of a reference or of a primitive have nowhere to go.
-  if (!owns && !result.is_error()) {
-    for (const Level& level : levels) {
-      const std::string key = join_key(level.rel, slot->name);
-      for (ModelInfo* model : graph_.at(level.object).type->linearization) {
-        auto it = model->prefixes.find(key);
-        if (it == model->prefixes.end()) continue;
-        const Entry& e = model->entries[it->second];
-        if (e.kind == Entry::Kind::Annotation) continue;
-        if (result.kind == Value::Kind::Object && graph_.at(result.object).is_const_singleton) {
-          sink_.report(
-              DiagCode::ConstAssignment, e.member->range,
-              "Cannot assign to attribute of const model " + graph_.at(result.object).type->qualified);
-        } else if (result.kind == Value::Kind::Object) {
-          sink_.report(DiagCode::AssignThroughReference, e.member->range,
-                       "Cannot assign through reference " + std::string(slot->name));
-        } else {
-          sink_.report(DiagCode::UnknownAttribute, e.member->range,
-                       "`" + std::string(slot->name) + "` is " + type.describe() + " and has no attributes");
-        }
-        result = Value::error();
-        break;
-      }
-      if (result.is_error()) break;
+  if (!owns && !result.is_error() && slot->entries_below) {
+    const Entry* e = entry_below(id, slot->name);
+    if (e && result.kind == Value::Kind::Object && graph_.at(result.object).is_const_singleton) {
+      sink_.report(DiagCode::ConstAssignment, e->member->range,
+                   "Cannot assign to attribute of const model " + graph_.at(result.object).type->qualified);
+      result = Value::error();
+    } else if (e && result.kind == Value::Kind::Object) {
+      sink_.report(DiagCode::AssignThroughReference, e->member->range,
+                   "Cannot assign through reference " + std::string(slot->name));
+      result = Value::error();
+    } else if (e) {
+      sink_.report(DiagCode::UnknownAttribute, e->member->range,
+                   "`" + std::string(slot->name) + "` is " + type.describe() + " and has no attributes");
+      result = Value::error();
     }
   }
   slot->value = std::move(result);
@@ -600,8 +620,9 @@ Value Evaluator::owned_default(ObjectId id, Slot& slot) {
                  graph_.objects.size() >= kMaxObjects
                      ? "the model needs more than " + std::to_string(kMaxObjects) + " instances at " +
                            slot_path(id, slot.name)
-                     : "the instance tree does not end at " + slot_path(id, slot.name) + ": " + model->qualified +
-                           " contains itself (" + std::to_string(repeats) + " nested owned instances)");
+                     : "the instance tree does not end at " + slot_path(id, slot.name) + ": " +
+                           model->qualified + " contains itself (" + std::to_string(repeats) +
+                           " nested owned instances)");
     return Value::error();
   }
   const std::string name(slot.name);

@@ -111,8 +111,8 @@ class Evaluator {
   std::vector<Level> levels_of(ObjectId id) const;
   Binding find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
                        bool include_declarations);
-  bool touched_below(const std::vector<Level>& levels, std::string_view slot) const;
-  std::vector<Binding> find_all_becomes(const std::vector<Level>& levels, std::string_view slot);
+  const Entry* entry_below(ObjectId id, std::string_view slot) const;
+  Type declared_type(const Entry& declaration, ModelInfo* model);
   Type merged_becomes_type(const std::vector<Binding>& all);
   // An entry written with a 0.17.8 attribute name (`charges`) that binds this slot (`connectors`).
   static bool is_renamed_to(const Object& object, std::string_view written, std::string_view slot);
@@ -148,7 +148,10 @@ class Evaluator {
   ObjectGraph graph_;
   std::unordered_map<ModelInfo*, ObjectId> singletons_;
   std::unordered_map<GlobalInfo*, std::pair<int, Value>> globals_;  // state 1 = evaluating, 2 = done
-  std::unordered_set<const Entry*> reported_unknown_;  // one message per wrong entry, however many instances
+  std::unordered_set<const Entry*> reported_unknown_;
+  std::unordered_map<const Entry*, Type>
+      declared_types_;  // a declaration's type resolves the same everywhere  // one message per wrong entry,
+                        // however many instances
   int eval_depth_ = 0;
 };
 

@@ -40,6 +40,7 @@ struct Slot {
   Binding binding;              // the value's source; entry == nullptr when nothing binds it
   Binding becomes;              // the `becomes` that set `type`, if any
   bool explicit_value = false;  // assigned (not a declaration default), itself or any part of it
+  bool entries_below = false;   // some entry targets a part of it (an error unless it owns an instance)
   enum class State : uint8_t { Pending, Evaluating, Done } state = State::Pending;
   bool owns = false;    // value is an object owned by this slot
   bool preset = false;  // value given directly (initializer or native result), not by an entry

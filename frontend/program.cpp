@@ -623,7 +623,11 @@ bool Program::resolve(ModelInfo* model) {
     const bool assigns = e.kind == Entry::Kind::Value || e.kind == Entry::Kind::Becomes;
     for (size_t n = 1; n < e.path.size(); ++n) {
       model->prefixes.emplace(join(e.path, n), e.index);
-      if (assigns) model->assigned_prefixes.emplace(join(e.path, n), e.index);
+      if (e.kind == Entry::Kind::Annotation && n == e.path.size() - 1) {
+        model->annotations_below[join(e.path, n - 1)].push_back(e.index);
+      } else if (e.kind != Entry::Kind::Annotation) {
+        model->children_below[join(e.path, n - 1)].emplace_back(e.path[n - 1], assigns);
+      }
     }
     if (e.kind == Entry::Kind::Declare && !declared.emplace(key, &e).second) {
       sink_.report(DiagCode::DuplicateAttribute, e.member->path.range, "Duplicate attribute name " + key);

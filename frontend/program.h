@@ -97,9 +97,12 @@ struct ModelInfo {
   std::vector<Entry> entries;
   std::unordered_map<std::string, std::vector<uint32_t>> by_parent;  // parent_key -> entries
   std::unordered_map<std::string, uint32_t> prefixes;  // every strict prefix of an entry path -> an entry
-  std::unordered_map<std::string, uint32_t> assigned_prefixes;  // the same, for Value and Becomes entries
-  std::vector<MethodInfo> methods;                              // own methods
-  std::map<std::string, ExprId, std::less<>> annotations;       // own model annotations
+  // parent path -> the attributes under it with entries on their parts (true: some of them assign).
+  std::unordered_map<std::string, std::vector<std::pair<std::string_view, bool>>> children_below;
+  // parent path -> Annotation entries on the attributes directly under it.
+  std::unordered_map<std::string, std::vector<uint32_t>> annotations_below;
+  std::vector<MethodInfo> methods;                         // own methods
+  std::map<std::string, ExprId, std::less<>> annotations;  // own model annotations
 
   bool is_subtype_of(const ModelInfo* other) const;  // reflexive; through bases and traits
 };

@@ -23,31 +23,37 @@ class ViewBuilder {
     input_ = program.builtin_model("Physics.Signals.Input");
     output_ = program.builtin_model("Physics.Signals.Output");
     const std::pair<const char*, Geometry::Shape> shapes[] = {
-        {"Box", Geometry::Shape::Box},         {"Sphere", Geometry::Shape::Sphere},
+        {"Box", Geometry::Shape::Box},           {"Sphere", Geometry::Shape::Sphere},
         {"Cylinder", Geometry::Shape::Cylinder}, {"Capsule", Geometry::Shape::Capsule},
-        {"Plane", Geometry::Shape::Plane},     {"ConvexMesh", Geometry::Shape::ConvexMesh},
-        {"TriMesh", Geometry::Shape::TriMesh}, {"ExternalTriMeshGeometry", Geometry::Shape::ExternalMesh}};
+        {"Plane", Geometry::Shape::Plane},       {"ConvexMesh", Geometry::Shape::ConvexMesh},
+        {"TriMesh", Geometry::Shape::TriMesh},   {"ExternalTriMeshGeometry", Geometry::Shape::ExternalMesh}};
     for (const char* bundle : {"Physics3D.Geometries.", "Visuals.Geometries."}) {
       for (const auto& [name, shape] : shapes) {
-        if (fe::ModelInfo* m = program.builtin_model(std::string(bundle) + name)) shapes_.emplace_back(m, shape);
+        if (fe::ModelInfo* m = program.builtin_model(std::string(bundle) + name))
+          shapes_.emplace_back(m, shape);
       }
     }
     using K = Interaction1D::Kind;
-    const std::pair<const char*, K> kinds1d[] = {
-        {"LinearSpring", K::LinearSpring},       {"TorsionSpring", K::TorsionSpring},
-        {"LinearRange", K::LinearRange},         {"RotationalRange", K::RotationalRange},
-        {"LinearVelocityMotor", K::LinearVelocityMotor}, {"RotationalVelocityMotor", K::RotationalVelocityMotor},
-        {"ForceMotor", K::ForceMotor},           {"TorqueMotor", K::TorqueMotor}};
+    const std::pair<const char*, K> kinds1d[] = {{"LinearSpring", K::LinearSpring},
+                                                 {"TorsionSpring", K::TorsionSpring},
+                                                 {"LinearRange", K::LinearRange},
+                                                 {"RotationalRange", K::RotationalRange},
+                                                 {"LinearVelocityMotor", K::LinearVelocityMotor},
+                                                 {"RotationalVelocityMotor", K::RotationalVelocityMotor},
+                                                 {"ForceMotor", K::ForceMotor},
+                                                 {"TorqueMotor", K::TorqueMotor}};
     for (const auto& [name, kind] : kinds1d) {
       if (fe::ModelInfo* m = program.builtin_model(std::string("Physics3D.Interactions.") + name)) {
         kinds1d_.emplace_back(m, kind);
       }
     }
-    const std::pair<const char*, MateType> kinds[] = {
-        {"Lock", MateType::Lock},         {"Hinge", MateType::Hinge},
-        {"Prismatic", MateType::Prismatic}, {"Cylindrical", MateType::Cylindrical},
-        {"Ball", MateType::Ball},         {"Distance", MateType::Distance},
-        {"ConstantVelocity", MateType::ConstantVelocity}};
+    const std::pair<const char*, MateType> kinds[] = {{"Lock", MateType::Lock},
+                                                      {"Hinge", MateType::Hinge},
+                                                      {"Prismatic", MateType::Prismatic},
+                                                      {"Cylindrical", MateType::Cylindrical},
+                                                      {"Ball", MateType::Ball},
+                                                      {"Distance", MateType::Distance},
+                                                      {"ConstantVelocity", MateType::ConstantVelocity}};
     for (const auto& [name, type] : kinds) {
       if (fe::ModelInfo* m = program.builtin_model(std::string("Physics3D.Interactions.") + name)) {
         mate_kinds_.emplace_back(m, type);
@@ -56,7 +62,8 @@ class ViewBuilder {
   }
 
   PhysicsView build(fe::ObjectId root) {
-    if (!system_ || !body_ || !connector_ || !mate_) return std::move(view_);  // no Physics3D: nothing to assemble
+    if (!system_ || !body_ || !connector_ || !mate_)
+      return std::move(view_);  // no Physics3D: nothing to assemble
     // Depth-first in declaration order, parents before children.
     struct Item {
       fe::ObjectId object;
@@ -101,7 +108,9 @@ class ViewBuilder {
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, node});
   }
 
-  static bool is(const fe::Object& obj, const fe::ModelInfo* model) { return model && obj.type->is_subtype_of(model); }
+  static bool is(const fe::Object& obj, const fe::ModelInfo* model) {
+    return model && obj.type->is_subtype_of(model);
+  }
 
   double real(fe::ObjectId id, std::string_view name, double fallback = 0.0) {
     const fe::Value* v = ev_.value(id, name);
@@ -113,17 +122,20 @@ class ViewBuilder {
   }
 
   void read_body(fe::ObjectId id, BodyProperties& body) {
-    if (const fe::Value* d = ev_.value(id, "is_dynamic"); d && d->kind == fe::Value::Kind::Bool) body.dynamic = d->bool_value;
+    if (const fe::Value* d = ev_.value(id, "is_dynamic"); d && d->kind == fe::Value::Kind::Bool)
+      body.dynamic = d->bool_value;
     if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
       body.mass = real(inertia, "mass");
       if (fe::ObjectId tensor = object(inertia, "tensor"); tensor != fe::kNoObject) {
         for (int r = 0; r < 3; ++r) {
-          for (int c = 0; c < 3; ++c) body.inertia(r, c) = real(tensor, "e" + std::to_string(r) + std::to_string(c));
+          for (int c = 0; c < 3; ++c)
+            body.inertia(r, c) = real(tensor, "e" + std::to_string(r) + std::to_string(c));
         }
       }
     }
     if (fe::ObjectId kinematics = object(id, "kinematics"); kinematics != fe::kNoObject) {
-      if (fe::ObjectId cm = object(kinematics, "local_cm_transform"); cm != fe::kNoObject) body.cm = affine(cm);
+      if (fe::ObjectId cm = object(kinematics, "local_cm_transform"); cm != fe::kNoObject)
+        body.cm = affine(cm);
     }
   }
 
@@ -140,11 +152,18 @@ class ViewBuilder {
     }
     if (fe::ObjectId t = object(id, "local_transform"); t != fe::kNoObject) g.local = affine(t);
     switch (g.shape) {
-      case Geometry::Shape::Box: g.size = vec3(id, "size"); break;
-      case Geometry::Shape::Sphere: g.size.x() = real(id, "radius"); break;
+      case Geometry::Shape::Box:
+        g.size = vec3(id, "size");
+        break;
+      case Geometry::Shape::Sphere:
+        g.size.x() = real(id, "radius");
+        break;
       case Geometry::Shape::Cylinder:
-      case Geometry::Shape::Capsule: g.size = {real(id, "radius"), real(id, "height"), 0.0}; break;
-      default: break;
+      case Geometry::Shape::Capsule:
+        g.size = {real(id, "radius"), real(id, "height"), 0.0};
+        break;
+      default:
+        break;
     }
     if (const fe::Value* path = ev_.value(id, "path"); path && path->kind == fe::Value::Kind::String) {
       g.file = path->string_value;
@@ -155,8 +174,10 @@ class ViewBuilder {
       g.scale = Eigen::Vector3d::Constant(scale->as_real());
     }
     g.material = object(id, "material");
-    if (const fe::Value* c = ev_.value(id, "enable_collisions"); c && c->kind == fe::Value::Kind::Bool) g.collides = c->bool_value;
-    if (const fe::Value* m = ev_.value(id, "include_in_mass_properties"); m && m->kind == fe::Value::Kind::Bool) {
+    if (const fe::Value* c = ev_.value(id, "enable_collisions"); c && c->kind == fe::Value::Kind::Bool)
+      g.collides = c->bool_value;
+    if (const fe::Value* m = ev_.value(id, "include_in_mass_properties");
+        m && m->kind == fe::Value::Kind::Bool) {
       g.in_mass = m->bool_value;
     }
     if (g.visual) g.collides = g.in_mass = false;
@@ -185,7 +206,8 @@ class ViewBuilder {
       if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array.size() != 2) continue;
       const fe::Value& x = mate_list->array[0];
       const fe::Value& y = mate_list->array[1];
-      const bool same = (x.object == a.object && y.object == b.object) || (x.object == b.object && y.object == a.object);
+      const bool same =
+          (x.object == a.object && y.object == b.object) || (x.object == b.object && y.object == a.object);
       if (same && a.kind == fe::Value::Kind::Object && b.kind == fe::Value::Kind::Object) {
         interaction.mate = static_cast<int>(m);
         return;
@@ -201,7 +223,8 @@ class ViewBuilder {
     signal.path = ev_.graph().path(id);
     signal.type = obj.type->qualified;
     signal.source = object(id, "source");
-    if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool) signal.enabled = e->bool_value;
+    if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
+      signal.enabled = e->bool_value;
     view_.signals.push_back(std::move(signal));
   }
 
@@ -257,7 +280,8 @@ class ViewBuilder {
 
   int add_node(fe::ObjectId id, int parent, bool is_root) {
     FrameNode node;
-    node.kind = ev_.graph().at(id).type->is_subtype_of(system_) ? FrameNode::Kind::System : FrameNode::Kind::Body;
+    node.kind =
+        ev_.graph().at(id).type->is_subtype_of(system_) ? FrameNode::Kind::System : FrameNode::Kind::Body;
     node.object = id;
     node.parent = parent;
     node.path = ev_.graph().path(id);
@@ -385,7 +409,8 @@ class ViewBuilder {
 
 }  // namespace
 
-PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root, frontend::DiagnosticSink& sink) {
+PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root,
+                               frontend::DiagnosticSink& sink) {
   return ViewBuilder(evaluator, sink).build(root);
 }
 
@@ -393,27 +418,40 @@ Transform joint_offset(const Mate& mate) {
   Transform j;
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   switch (mate.type) {
-    case MateType::Hinge: j.rotation = natives::quat_angle_axis(mate.initial_angle, z); break;
-    case MateType::Prismatic: j.position = mate.initial_position * z; break;
+    case MateType::Hinge:
+      j.rotation = natives::quat_angle_axis(mate.initial_angle, z);
+      break;
+    case MateType::Prismatic:
+      j.position = mate.initial_position * z;
+      break;
     case MateType::Cylindrical:
       j.rotation = natives::quat_angle_axis(mate.initial_angle, z);
       j.position = mate.initial_position * z;
       break;
-    default: break;
+    default:
+      break;
   }
   return j;
 }
 
 std::string mate_type_name(MateType type) {
   switch (type) {
-    case MateType::Lock: return "Lock";
-    case MateType::Hinge: return "Hinge";
-    case MateType::Prismatic: return "Prismatic";
-    case MateType::Cylindrical: return "Cylindrical";
-    case MateType::Ball: return "Ball";
-    case MateType::Distance: return "Distance";
-    case MateType::ConstantVelocity: return "ConstantVelocity";
-    case MateType::Other: return "Mate";
+    case MateType::Lock:
+      return "Lock";
+    case MateType::Hinge:
+      return "Hinge";
+    case MateType::Prismatic:
+      return "Prismatic";
+    case MateType::Cylindrical:
+      return "Cylindrical";
+    case MateType::Ball:
+      return "Ball";
+    case MateType::Distance:
+      return "Distance";
+    case MateType::ConstantVelocity:
+      return "ConstantVelocity";
+    case MateType::Other:
+      return "Mate";
   }
   return "Mate";
 }

@@ -30,10 +30,10 @@ struct FrameNode {
   enum class Kind { System, Body };
   Kind kind;
   frontend::ObjectId object;
-  int parent = kWorld;  // index into nodes, or kWorld
-  std::string path;     // instance path relative to the root ("" for the root)
-  Transform local;      // relative to the parent node (SNAP fills the undefined ones)
-  bool defined = false;  // the model assigned the transform (or a part of it); SNAP never moves it
+  int parent = kWorld;     // index into nodes, or kWorld
+  std::string path;        // instance path relative to the root ("" for the root)
+  Transform local;         // relative to the parent node (SNAP fills the undefined ones)
+  bool defined = false;    // the model assigned the transform (or a part of it); SNAP never moves it
   bool reference = false;  // a system's reference_body: forced first when SNAP is stuck
   BodyProperties body;     // Body nodes
   frontend::SourceRange where;
@@ -48,9 +48,10 @@ struct Geometry {
   int owner = kWorld;
   std::string path;
   Transform local;  // relative to the owner
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box: full extents; sphere: (r); cylinder, capsule: (r, h)
+  Eigen::Vector3d size =
+      Eigen::Vector3d::Zero();  // box: full extents; sphere: (r); cylinder, capsule: (r, h)
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-  std::string file;                                 // external mesh
+  std::string file;  // external mesh
   frontend::ObjectId material = frontend::kNoObject;
   bool collides = true;
   bool in_mass = true;
@@ -60,8 +61,15 @@ struct Geometry {
 // Springs, ranges and motors acting on the degree of freedom of a mate's connectors.
 struct Interaction1D {
   enum class Kind {
-    LinearSpring, TorsionSpring, LinearRange, RotationalRange, LinearVelocityMotor, RotationalVelocityMotor,
-    ForceMotor, TorqueMotor, Other
+    LinearSpring,
+    TorsionSpring,
+    LinearRange,
+    RotationalRange,
+    LinearVelocityMotor,
+    RotationalVelocityMotor,
+    ForceMotor,
+    TorqueMotor,
+    Other
   };
   frontend::ObjectId object;
   Kind kind = Kind::Other;
@@ -117,11 +125,12 @@ struct PhysicsView {
 };
 
 // Builds the view of the tree under `root`. Requires the graph to be fully evaluated.
-PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root, frontend::DiagnosticSink& sink);
+PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root,
+                               frontend::DiagnosticSink& sink);
 
-// The offset a mate's free degrees of freedom take at rest: connectors[1]'s frame relative to connectors[0]'s.
-// Hinge: rotation by initial_angle about main_axis (right-handed); Prismatic: translation by initial_position
-// along it; Cylindrical: both; others: none.
+// The offset a mate's free degrees of freedom take at rest: connectors[1]'s frame relative to
+// connectors[0]'s. Hinge: rotation by initial_angle about main_axis (right-handed); Prismatic: translation by
+// initial_position along it; Cylindrical: both; others: none.
 Transform joint_offset(const Mate& mate);
 
 std::string mate_type_name(MateType type);

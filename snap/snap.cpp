@@ -27,7 +27,10 @@ double axis_angle(const Eigen::Quaterniond& q, const Eigen::Vector3d& axis) {
 class Snapper {
  public:
   Snapper(PhysicsView& view, fe::DiagnosticSink& sink)
-      : view_(view), sink_(sink), fixed_(view.nodes.size()), placed_by_(view.nodes.size(), -1),
+      : view_(view),
+        sink_(sink),
+        fixed_(view.nodes.size()),
+        placed_by_(view.nodes.size(), -1),
         forced_(view.nodes.size(), false) {
     for (size_t i = 0; i < view.nodes.size(); ++i) fixed_[i] = view.nodes[i].defined;
   }
@@ -36,7 +39,8 @@ class Snapper {
     std::vector<int> unused;
     for (size_t m = 0; m < view_.mates.size(); ++m) {
       const Mate& mate = view_.mates[m];
-      if (mate.enable_snap && mate.connectors[0] >= 0 && mate.connectors[1] >= 0) unused.push_back(static_cast<int>(m));
+      if (mate.enable_snap && mate.connectors[0] >= 0 && mate.connectors[1] >= 0)
+        unused.push_back(static_cast<int>(m));
     }
     size_t free_dofs = 0;  // degrees of freedom recorded by placed mates and not yet given up
     while (!unused.empty()) {
@@ -58,13 +62,14 @@ class Snapper {
     for (int m : unused) {
       const Mate& mate = view_.mates[m];
       sink_.report(fe::DiagCode::SnapUnplaced, mate.where,
-                   "SNAP cannot place mate " + mate.path + " between " + connector_name(mate.connectors[0]) + " and " +
-                       connector_name(mate.connectors[1]));
+                   "SNAP cannot place mate " + mate.path + " between " + connector_name(mate.connectors[0]) +
+                       " and " + connector_name(mate.connectors[1]));
     }
     resolve_adaptive();
     SnapResult result;
     for (size_t i = 0; i < view_.nodes.size(); ++i) result.node_world.push_back(world(static_cast<int>(i)));
-    for (size_t c = 0; c < view_.connectors.size(); ++c) result.connector_world.push_back(connector_world(static_cast<int>(c)));
+    for (size_t c = 0; c < view_.connectors.size(); ++c)
+      result.connector_world.push_back(connector_world(static_cast<int>(c)));
     result.placed_by = placed_by_;
     result.forced = forced_;
     return result;
@@ -139,16 +144,19 @@ class Snapper {
     const Transform partner = connector_world(mate.connectors[1 - side]);
     const Transform j = joint_offset(mate);
     // Rest: F1 = F0 ∘ J. The target of the moving connector's world frame:
-    const Transform target = side == 1 ? affine_compose(partner, j) : affine_compose(partner, affine_inverse(j));
+    const Transform target =
+        side == 1 ? affine_compose(partner, j) : affine_compose(partner, affine_inverse(j));
     // N: the moving connector's frame seen from C (the defined transforms between C and the connector).
     Transform below;
     std::vector<int> between;
     for (int n = moving.owner; n != node; n = parent(n)) between.push_back(n);
-    for (auto it = between.rbegin(); it != between.rend(); ++it) below = affine_compose(below, view_.nodes[*it].local);
+    for (auto it = between.rbegin(); it != between.rend(); ++it)
+      below = affine_compose(below, view_.nodes[*it].local);
     const Transform n_frame = affine_compose(below, moving.local);
     const Transform p_frame = world(parent(node));
     // S = P⁻¹ ∘ A ∘ N⁻¹
-    view_.nodes[node].local = affine_compose(affine_compose(affine_inverse(p_frame), target), affine_inverse(n_frame));
+    view_.nodes[node].local =
+        affine_compose(affine_compose(affine_inverse(p_frame), target), affine_inverse(n_frame));
     view_.nodes[node].local.rotation.normalize();
     fixed_[node] = true;
     placed_by_[node] = m;
@@ -161,8 +169,9 @@ class Snapper {
     if (r.distance <= kDistanceTolerance && r.angle <= kAngleTolerance) return;
     sink_.report(fe::DiagCode::SnapInconsistent, mate.where,
                  "mate " + mate.path + " is over-determined: after SNAP its connectors " +
-                     connector_name(mate.connectors[0]) + " and " + connector_name(mate.connectors[1]) + " are " +
-                     fe::format_real(r.distance) + " m and " + fe::format_real(r.angle * 180.0 / M_PI) +
+                     connector_name(mate.connectors[0]) + " and " + connector_name(mate.connectors[1]) +
+                     " are " + fe::format_real(r.distance) + " m and " +
+                     fe::format_real(r.angle * 180.0 / M_PI) +
                      " degrees apart; the simulation will pull them together");
   }
 
@@ -199,7 +208,8 @@ class Snapper {
         if (!c.adaptive) continue;
         const Transform partner = connector_world(mate.connectors[1 - side]);
         const Transform j = joint_offset(mate);
-        const Transform target = side == 1 ? affine_compose(partner, j) : affine_compose(partner, affine_inverse(j));
+        const Transform target =
+            side == 1 ? affine_compose(partner, j) : affine_compose(partner, affine_inverse(j));
         c.local = affine_compose(affine_inverse(world(c.owner)), target);
         break;
       }
@@ -243,11 +253,14 @@ Residual mate_residual(const Mate& mate, const Transform& frame0, const Transfor
       r.distance = relative.position.norm();
       break;
     case MateType::Distance:
-    case MateType::Other: break;
+    case MateType::Other:
+      break;
   }
   return r;
 }
 
-SnapResult run_snap(PhysicsView& view, frontend::DiagnosticSink& sink) { return Snapper(view, sink).run(); }
+SnapResult run_snap(PhysicsView& view, frontend::DiagnosticSink& sink) {
+  return Snapper(view, sink).run();
+}
 
 }  // namespace openplx::snap

@@ -10,16 +10,18 @@ namespace {
 using frontend::format_real;
 
 void line(std::ostream& out, const std::string& path, Transform t) {
-  if (t.rotation.w() < 0) t.rotation.coeffs() = -t.rotation.coeffs();  // q and -q are one rotation: print w >= 0
+  if (t.rotation.w() < 0)
+    t.rotation.coeffs() = -t.rotation.coeffs();  // q and -q are one rotation: print w >= 0
   out << path << " position {" << format_real(t.position.x()) << ", " << format_real(t.position.y()) << ", "
       << format_real(t.position.z()) << "} rotation {" << format_real(t.rotation.x()) << ", "
-      << format_real(t.rotation.y()) << ", " << format_real(t.rotation.z()) << ", " << format_real(t.rotation.w())
-      << "}\n";
+      << format_real(t.rotation.y()) << ", " << format_real(t.rotation.z()) << ", "
+      << format_real(t.rotation.w()) << "}\n";
 }
 
 }  // namespace
 
-void dump_snap(std::ostream& out, const PhysicsView& view, const SnapResult& result, const std::string& root_name) {
+void dump_snap(std::ostream& out, const PhysicsView& view, const SnapResult& result,
+               const std::string& root_name) {
   for (const auto& [is_node, index] : view.order) {
     if (is_node) {
       const std::string& path = view.nodes[index].path;

@@ -62,7 +62,8 @@ TEST_F(PhysicsView, BodiesCarryMassAndGeometries) {
     }
     if (g.path == "hingePendulum.rod.arrow") {
       EXPECT_EQ(g.local.position, Eigen::Vector3d(0, 0, 0.5));
-      EXPECT_NEAR(g.local.rotation.angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()))),
+      EXPECT_NEAR(g.local.rotation.angularDistance(
+                      Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()))),
                   0.0, 1e-12);
       ++boxes;
     }

@@ -49,7 +49,9 @@ class Snap : public openplx::testing::EvalTest {
     return 0;
   }
   const sn::Transform& world(const std::string& path) { return result_.node_world[node(path)]; }
-  const sn::Transform& connector_world(const std::string& path) { return result_.connector_world[connector(path)]; }
+  const sn::Transform& connector_world(const std::string& path) {
+    return result_.connector_world[connector(path)];
+  }
   // Every mate meets: a mate that placed a node exactly at its initial values, the others up to their free
   // degrees of freedom.
   void expect_all_mates_meet() {
@@ -61,8 +63,8 @@ class Snap : public openplx::testing::EvalTest {
       const sn::Residual r = sn::mate_residual(mate, f0, f1);
       EXPECT_LE(r.distance, kTol) << mate.path;
       EXPECT_LE(r.angle, kTol) << mate.path;
-      const bool placed = std::find(result_.placed_by.begin(), result_.placed_by.end(), static_cast<int>(m)) !=
-                          result_.placed_by.end();
+      const bool placed = std::find(result_.placed_by.begin(), result_.placed_by.end(),
+                                    static_cast<int>(m)) != result_.placed_by.end();
       if (placed) {
         // frame1 = frame0 ∘ J exactly (initial values honoured)
         const sn::Transform expected = openplx::natives::affine_compose(f0, sn::joint_offset(mate));
@@ -141,7 +143,8 @@ std::string with_theta(const char* text, const std::string& theta) {
 TEST_F(Snap, SpecExampleAHingeAboutZ) {
   ASSERT_TRUE(assemble(with_theta(kExampleA, "0.7"))) << all_diags();
   expect_near(world("body").position, {0, 0, -0.5});
-  expect_rotation(world("body").rotation, Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())));
+  expect_rotation(world("body").rotation,
+                  Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())));
   expect_all_mates_meet();
 }
 
@@ -162,14 +165,16 @@ const char* kExampleB =
 TEST_F(Snap, SpecExampleBPendulumAboutY) {
   ASSERT_TRUE(assemble(with_theta(kExampleB, "0"))) << all_diags();
   expect_near(world("body").position, {-0.5, 0, 0});
-  expect_rotation(world("body").rotation, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY())));
+  expect_rotation(world("body").rotation,
+                  Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY())));
   expect_all_mates_meet();
 }
 
 TEST_F(Snap, SpecExampleBAtQuarterTurn) {
   ASSERT_TRUE(assemble(with_theta(kExampleB, "Math.PI / 2"))) << all_diags();
   expect_near(world("body").position, {0, 0, 0.5});
-  expect_rotation(world("body").rotation, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY())));
+  expect_rotation(world("body").rotation,
+                  Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY())));
   expect_all_mates_meet();
 }
 
@@ -229,21 +234,20 @@ const char* kLink =
     "        normal: Math.Vec3.Z_AXIS()\n";
 
 TEST_F(Snap, ChainDeclaredLeafFirstStillAssembles) {
-  ASSERT_TRUE(assemble(std::string(kLink) +
-                       "Arm is Physics3D.System:\n"
-                       "    base is Physics3D.Interactions.MateConnector:\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "    a is Link\n"
-                       "    b is Link\n"
-                       "    c is Link\n"
-                       "    h3 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [b.top, c.bottom]\n"
-                       "    h2 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [a.top, b.bottom]\n"
-                       "        initial_angle: Math.PI / 2\n"
-                       "    h1 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [base, a.bottom]\n"))
+  ASSERT_TRUE(assemble(std::string(kLink) + "Arm is Physics3D.System:\n"
+                                            "    base is Physics3D.Interactions.MateConnector:\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "    a is Link\n"
+                                            "    b is Link\n"
+                                            "    c is Link\n"
+                                            "    h3 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [b.top, c.bottom]\n"
+                                            "    h2 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [a.top, b.bottom]\n"
+                                            "        initial_angle: Math.PI / 2\n"
+                                            "    h1 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [base, a.bottom]\n"))
       << all_diags();
   expect_near(world("a").position, {0, 0, 0});
   expect_near(world("b").position, {0, 0, 1});
@@ -283,39 +287,39 @@ TEST_F(Snap, TreeOfBodiesOnOneBase) {
 // A parallelogram four-bar: ground 1 m wide, cranks 1 m tall. Three hinges place the bars; the fourth closes
 // the loop and must already meet.
 TEST_F(Snap, ClosedFourBarLinkageMeetsAtEveryHinge) {
-  ASSERT_TRUE(assemble(std::string(kLink) +
-                       "Coupler is Physics3D.Bodies.RigidBody:\n"
-                       "    left is Physics3D.Interactions.MateConnector:\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "    right is Physics3D.Interactions.MateConnector:\n"
-                       "        position: {1, 0, 0}\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "FourBar is Physics3D.System:\n"
-                       "    ground_left is Physics3D.Interactions.MateConnector:\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "    ground_right is Physics3D.Interactions.MateConnector:\n"
-                       "        position: {1, 0, 0}\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "    crank is Link\n"
-                       "    rocker is Link\n"
-                       "    coupler is Coupler\n"
-                       "    h1 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [ground_left, crank.bottom]\n"
-                       "        initial_angle: 0.4\n"
-                       "    h2 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [crank.top, coupler.left]\n"
-                       "        initial_angle: -0.4\n"
-                       "    h3 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [coupler.right, rocker.top]\n"
-                       "        initial_angle: 0.4\n"
-                       "    h4 is Physics3D.Interactions.Hinge:\n"
-                       "        connectors: [ground_right, rocker.bottom]\n"))
+  ASSERT_TRUE(assemble(std::string(kLink) + "Coupler is Physics3D.Bodies.RigidBody:\n"
+                                            "    left is Physics3D.Interactions.MateConnector:\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "    right is Physics3D.Interactions.MateConnector:\n"
+                                            "        position: {1, 0, 0}\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "FourBar is Physics3D.System:\n"
+                                            "    ground_left is Physics3D.Interactions.MateConnector:\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "    ground_right is Physics3D.Interactions.MateConnector:\n"
+                                            "        position: {1, 0, 0}\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "    crank is Link\n"
+                                            "    rocker is Link\n"
+                                            "    coupler is Coupler\n"
+                                            "    h1 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [ground_left, crank.bottom]\n"
+                                            "        initial_angle: 0.4\n"
+                                            "    h2 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [crank.top, coupler.left]\n"
+                                            "        initial_angle: -0.4\n"
+                                            "    h3 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [coupler.right, rocker.top]\n"
+                                            "        initial_angle: 0.4\n"
+                                            "    h4 is Physics3D.Interactions.Hinge:\n"
+                                            "        connectors: [ground_right, rocker.bottom]\n"))
       << all_diags();
-  for (const char* pair : {"crank.top|coupler.left", "coupler.right|rocker.top", "ground_right|rocker.bottom"}) {
+  for (const char* pair :
+       {"crank.top|coupler.left", "coupler.right|rocker.top", "ground_right|rocker.bottom"}) {
     const std::string p(pair);
     const std::string a = p.substr(0, p.find('|')), b = p.substr(p.find('|') + 1);
     expect_near(connector_world(a).position, connector_world(b).position);
@@ -350,20 +354,19 @@ TEST_F(Snap, NestedSystemsWithOwnTransformsAndSystemConnectors) {
 }
 
 TEST_F(Snap, OverDeterminedMateIsAWarningWithItsResidual) {
-  ASSERT_TRUE(assemble(std::string(kLink) +
-                       "Scene is Physics3D.System:\n"
-                       "    a is Physics3D.Interactions.MateConnector:\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "    b is Physics3D.Interactions.MateConnector:\n"
-                       "        position: {0, 0, 3}\n"
-                       "        main_axis: Math.Vec3.Y_AXIS()\n"
-                       "        normal: Math.Vec3.Z_AXIS()\n"
-                       "    link is Link\n"
-                       "    l1 is Physics3D.Interactions.Lock:\n"
-                       "        connectors: [a, link.bottom]\n"
-                       "    l2 is Physics3D.Interactions.Lock:\n"
-                       "        connectors: [b, link.top]\n"))
+  ASSERT_TRUE(assemble(std::string(kLink) + "Scene is Physics3D.System:\n"
+                                            "    a is Physics3D.Interactions.MateConnector:\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "    b is Physics3D.Interactions.MateConnector:\n"
+                                            "        position: {0, 0, 3}\n"
+                                            "        main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        normal: Math.Vec3.Z_AXIS()\n"
+                                            "    link is Link\n"
+                                            "    l1 is Physics3D.Interactions.Lock:\n"
+                                            "        connectors: [a, link.bottom]\n"
+                                            "    l2 is Physics3D.Interactions.Lock:\n"
+                                            "        connectors: [b, link.top]\n"))
       << all_diags();
   EXPECT_EQ(expect_diag(fe::DiagCode::SnapInconsistent, 20, 5),  // kLink is 8 lines
             "mate l2 is over-determined: after SNAP its connectors b and link.top are 2.0 m and 0.0 degrees "
@@ -371,20 +374,20 @@ TEST_F(Snap, OverDeterminedMateIsAWarningWithItsResidual) {
 }
 
 TEST_F(Snap, ParallelNormalIsAnErrorAtTheConnector) {
-  EXPECT_FALSE(assemble(
-      "Scene is Physics3D.System:\n"
-      "    bad is Physics3D.Interactions.MateConnector:\n"
-      "        main_axis: Math.Vec3.Z_AXIS()\n"
-      "        normal: {0, 0, 2}\n"));
+  EXPECT_FALSE(
+      assemble("Scene is Physics3D.System:\n"
+               "    bad is Physics3D.Interactions.MateConnector:\n"
+               "        main_axis: Math.Vec3.Z_AXIS()\n"
+               "        normal: {0, 0, 2}\n"));
   expect_diag_containing(fe::DiagCode::InvalidConnector, "normal must not be parallel");
 }
 
 TEST_F(Snap, MateWithOneConnectorIsAnError) {
-  EXPECT_FALSE(assemble(
-      "Scene is Physics3D.System:\n"
-      "    c is Physics3D.Interactions.MateConnector\n"
-      "    hinge is Physics3D.Interactions.Hinge:\n"
-      "        connectors: [c]\n"));
+  EXPECT_FALSE(
+      assemble("Scene is Physics3D.System:\n"
+               "    c is Physics3D.Interactions.MateConnector\n"
+               "    hinge is Physics3D.Interactions.Hinge:\n"
+               "        connectors: [c]\n"));
   EXPECT_EQ(expect_diag(fe::DiagCode::InvalidMate, 3, 5), "mate hinge needs exactly two connectors, has 1");
 }
 

@@ -73,7 +73,8 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
   snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
   snap::SnapResult assembled = snap::run_snap(view, sink);
-  if (options.dump == DumpKind::Snap) snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
+  if (options.dump == DumpKind::Snap)
+    snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
   return true;
 }
 
