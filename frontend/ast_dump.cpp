@@ -2,34 +2,10 @@
 
 #include <ostream>
 
+#include "frontend/quoted.h"
+
 namespace openplx::frontend {
 namespace {
-
-std::string quote(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out + "\"";
-}
 
 std::string name_text(std::string_view text, bool quoted) {
   return quoted ? "`" + std::string(text) + "`" : std::string(text);
@@ -54,10 +30,10 @@ void append_expr(std::string& out, const Document& doc, ExprId id) {
       out += e.bool_value ? "true" : "false";
       break;
     case ExprKind::String:
-      out += quote(e.string_value);
+      out += quoted(e.string_value);
       break;
     case ExprKind::PathString:
-      out += (e.quoted ? "$" : "@") + quote(e.string_value);
+      out += (e.quoted ? "$" : "@") + quoted(e.string_value);
       break;
     case ExprKind::Name:
       out += name_text(e.text, e.quoted);
@@ -208,7 +184,7 @@ void dump_tokens(std::ostream& out, const SourceFile& file, const std::vector<To
       case TokenKind::EndOfFile:
         break;
       default:
-        out << ' ' << quote(file.text().substr(t.begin, t.end - t.begin));
+        out << ' ' << quoted(file.text().substr(t.begin, t.end - t.begin));
     }
     out << '\n';
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <ostream>
 
+#include "frontend/quoted.h"
+
 #include "frontend/evaluator.h"
 
 namespace openplx::frontend {
@@ -16,29 +18,6 @@ bool is_inline_type(const ModelInfo* type) {
       return true;
   }
   return false;
-}
-
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out + "\"";
 }
 
 }  // namespace
