@@ -906,7 +906,9 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
       namespace fs = std::filesystem;
       fs::path p(e.string_value);
       if (p.is_relative()) p = fs::path(program_.sources().file(doc.file).path()).parent_path() / p;
-      return Value::of_string(p.lexically_normal().generic_string());
+      std::error_code ec;
+      const fs::path absolute = fs::absolute(p, ec);  // a path string is absolute (spec §2.8)
+      return Value::of_string((ec ? p : absolute).lexically_normal().generic_string());
     }
     case ExprKind::Name:
     case ExprKind::This:

@@ -187,14 +187,14 @@ void Program::declare(DocumentInfo* doc, Namespace* ns) {
 }
 
 void Program::process_imports(DocumentInfo* doc) {
-  const fs::path base_dir = fs::path(sources_.file(doc->doc.file).path()).parent_path();
+  std::error_code ec;
+  const fs::path base_dir = fs::absolute(fs::path(sources_.file(doc->doc.file).path()), ec).parent_path();
   for (const Decl& decl : doc->doc.decls) {
     if (decl.kind != DeclKind::Import) continue;
     const Expr& path_expr = doc->doc.expr(*decl.value);
     fs::path target = fs::path(path_expr.string_value);
     if (target.is_relative()) target = base_dir / target;
     const std::string path = target.lexically_normal().generic_string();
-    std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
       sink_.report(DiagCode::ImportNotFound, decl.range, "Could not find imported file " + path);
       continue;

@@ -1,5 +1,7 @@
 #include "tools/cli/cli.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -14,6 +16,8 @@
 #include "frontend/pipeline.h"
 #include "frontend/program.h"
 #include "frontend/value_format.h"
+#include "mjcf_emitter/check.h"
+#include "mjcf_emitter/emitter.h"
 #include "snap/physics_view.h"
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
@@ -56,8 +60,36 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
 }
 
 // Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
+// --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did.
+void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOptions& emit_options,
+           const snap::PhysicsView& view, const snap::SnapResult& assembled, const fe::Evaluation& evaluation,
+           fe::DiagnosticSink& sink) {
+  namespace fs = std::filesystem;
+  // Beside the output (so relative mesh paths resolve), else in the temporary folder.
+  const fs::path dir = emit_options.output_dir.empty() ? fs::temp_directory_path() : fs::path(emit_options.output_dir);
+  const fs::path file = dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + ".xml");
+  const fe::SourceFile& source = evaluation.program->sources().file(evaluation.document->doc.file);
+  const fe::SourceRange at_file{evaluation.document->doc.file, source.content_begin(), source.content_begin()};
+  std::string error;
+  if (!write_file_atomically(file.string(), xml, error)) {
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_file, "--check cannot write " + file.string() + ": " + error);
+    return;
+  }
+  mjcf::CheckResult result =
+      mjcf::check_mjcf(file.string(), view, assembled, options.prefix, evaluation.evaluator->root_name());
+  std::error_code ec;
+  fs::remove(file, ec);
+  if (!result.loaded) {
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_file, "MuJoCo rejects the emitted MJCF: " + result.load_error);
+    return;
+  }
+  for (const std::string& problem : result.problems) {
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_file, "--check: " + problem);
+  }
+}
+
 bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
-              std::ostream& text, std::ostream& err) {
+              std::ostream& text, std::string& manifest, std::ostream& err) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.input, ec)) {
     err << options.input << ": error: "
@@ -73,25 +105,45 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
   snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
   snap::SnapResult assembled = snap::run_snap(view, sink);
-  if (options.dump == DumpKind::Snap)
-    snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
+  if (options.dump == DumpKind::Snap) snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
+  if (options.dump != DumpKind::None || sink.has_errors()) return true;
+  namespace fs = std::filesystem;
+  const bool to_file = options.output && *options.output != "-";
+  mjcf::EmitOptions emit_options;
+  emit_options.model_name = evaluation.evaluator->root_name();
+  emit_options.prefix = options.prefix;
+  if (to_file) emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
+  mjcf::Emitted emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, emit_options, sink);
+  if (sink.has_errors()) return true;
+  const std::string xml = emitted.document.to_string();
+  if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
+  if (options.output) text << xml;  // without -o the model is only checked
+  manifest = emitted.manifest_json;
   return true;
 }
 
 }  // namespace
 
+std::string manifest_path(const std::string& output) {
+  std::filesystem::path path(output);
+  if (path.extension() == ".xml") path.replace_extension();
+  return path.string() + ".signals.json";
+}
+
 std::string usage() {
-  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] "
+  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--prefix P] "
          "[--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
-         "Reads an OpenPLX model and evaluates it. With --dump, prints the tokens, the syntax tree or the\n"
-         "evaluated attribute values of the root model.\n"
+         "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the signal\n"
+         "manifest OUT.signals.json beside it). With --dump, prints an intermediate form instead.\n"
          "\n"
          "  --model NAME   the root model (default: the last model in FILE)\n"
          "  -o OUT         write the output to OUT ('-' for stdout, the default)\n"
          "  -B DIR         an extra bundle directory (repeatable)\n"
          "  --strict       treat warnings as errors\n"
+         "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose\n"
+         "  --prefix P     prepend P to every MuJoCo name\n"
          "  --dump=KIND    tokens | ast | values | snap (world frames after assembly)\n"
          "  --help         show this text\n"
          "  --version      show the version\n"
@@ -128,6 +180,15 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (arg == "--strict") {
       options.strict = true;
+      continue;
+    }
+    if (arg == "--check") {
+      options.check = true;
+      continue;
+    }
+    if (!take_value(args, i, "--prefix", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      options.prefix = value;
       continue;
     }
     if (!take_value(args, i, "--model", "", value, error, matched)) return std::nullopt;
@@ -201,14 +262,11 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     out << "openplx2mjcf " << OPENPLX_VERSION << '\n';
     return kExitOk;
   }
-  if (options->output && options->dump == DumpKind::None) {
-    err << "openplx2mjcf: error: MJCF output is not implemented yet; use --dump=tokens|ast with -o\n";
-    return kExitUsageError;
-  }
 
   fe::SourceManager sources;
   fe::DiagnosticSink sink(options->strict);
   std::ostringstream text;
+  std::string manifest;  // the signal manifest, written beside an MJCF output file
   if (options->dump == DumpKind::Tokens || options->dump == DumpKind::Ast) {
     std::string io_error;
     std::optional<fe::FileId> file_id = sources.load(options->input, io_error);
@@ -223,7 +281,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     } else {
       fe::dump_ast(text, file, fe::parse_file(sources, *file_id, sink));
     }
-  } else if (!evaluate(*options, sources, sink, text, err)) {
+  } else if (!evaluate(*options, sources, sink, text, manifest, err)) {
     return kExitInputError;
   }
 
@@ -234,7 +292,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     out << text.str();  // a dump of a broken file still helps; its diagnostics are on stderr
   } else if (!failed) {
     std::string write_error;
-    if (!write_file_atomically(*options->output, text.str(), write_error)) {
+    if (!write_file_atomically(*options->output, text.str(), write_error) ||
+        (!manifest.empty() && !write_file_atomically(manifest_path(*options->output), manifest, write_error))) {
       err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
           << "]\n";
       return kExitInputError;

@@ -21,6 +21,8 @@ struct CliOptions {
   std::optional<std::string> output;  // "-" is stdout
   std::vector<std::string> bundle_dirs;
   bool strict = false;
+  bool check = false;   // --check: load the MJCF in MuJoCo and compare with SNAP
+  std::string prefix;   // --prefix P: prepended to every MuJoCo name
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;
@@ -34,6 +36,8 @@ inline constexpr int kExitUsageError = 2;
 std::optional<CliOptions> parse_options(const std::vector<std::string>& args, std::string& error);
 
 std::string usage();
+// "model.xml" -> "model.signals.json"
+std::string manifest_path(const std::string& output);
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 

@@ -1,0 +1,38 @@
+// OpenPLX physics view (after SNAP) to an MJCF document for MuJoCo 2.2.2 (spec/mjcf-mapping.md).
+//
+// A spanning tree rooted at the world becomes the body tree: tree mates become joints in the child body at
+// its connector (Hinge: hinge, Prismatic: slide, Cylindrical: slide + hinge, Ball: ball, Lock: no joint),
+// a dynamic body no mate reaches gets a free joint, a static body (`is_dynamic: false`) hangs jointless from
+// the world. Mates that close loops become equality constraints with a contact exclude. Joint `ref` holds the
+// initial value, so MuJoCo joint readings equal OpenPLX angles and positions (connectors[1] relative to
+// connectors[0], right-handed about main_axis). Anything MuJoCo cannot express is a warning naming the
+// OpenPLX attribute and what was done instead.
+#pragma once
+
+#include <string>
+
+#include "frontend/diagnostics.h"
+#include "frontend/evaluator.h"
+#include "mjcf_emitter/xml.h"
+#include "snap/snap.h"
+
+namespace openplx::mjcf {
+
+struct EmitOptions {
+  std::string model_name;  // <mujoco model="...">
+  std::string prefix;      // prepended to every MuJoCo name (--prefix)
+  std::string output_dir;  // mesh files are written relative to it; empty: absolute paths
+};
+
+struct Emitted {
+  Element document{"mujoco"};
+  std::string manifest_json;  // the signal manifest: every OpenPLX input/output and its MuJoCo element
+};
+
+// MuJoCo 2.2.2's XML reader stops near 100 nested elements; deeper body chains are an error here.
+inline constexpr int kMaxBodyDepth = 90;
+
+Emitted emit_mjcf(const snap::PhysicsView& view, const snap::SnapResult& snap, frontend::Evaluator& evaluator,
+                  const EmitOptions& options, frontend::DiagnosticSink& sink);
+
+}  // namespace openplx::mjcf

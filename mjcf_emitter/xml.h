@@ -1,0 +1,45 @@
+// A small typed-enough XML tree for MJCF: elements with ordered attributes and children, printed with a
+// fixed order, two-space indentation and locale-independent shortest round-trip numbers, so the same model
+// always gives the same bytes.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace openplx::mjcf {
+
+// Shortest text that reads back as the same double ("0.5", "1e-07", "-0"); never locale-dependent.
+std::string number(double value);
+
+class Element {
+ public:
+  explicit Element(std::string name) : name_(std::move(name)) {}
+
+  Element& set(std::string_view key, std::string value);
+  Element& set(std::string_view key, double value) { return set(key, number(value)); }
+  Element& set(std::string_view key, int value) { return set(key, std::to_string(value)); }
+  Element& set(std::string_view key, const Eigen::Vector3d& v);
+  Element& set_quat(std::string_view key, const Eigen::Quaterniond& q);  // "w x y z", w >= 0
+  Element& add(std::string name);  // appends a child and returns it
+  Element& add(Element child);
+
+  const std::string& name() const { return name_; }
+  const std::string* get(std::string_view key) const;
+  // Children are held by pointer, so an element's address never changes: emitters keep pointers to joints
+  // and bodies while adding more elements.
+  const std::vector<std::unique_ptr<Element>>& children() const { return children_; }
+  std::vector<std::unique_ptr<Element>>& children() { return children_; }
+
+  // The whole tree as XML text (iterative, so deep trees cannot exhaust the stack).
+  std::string to_string() const;
+
+ private:
+  std::string name_;
+  std::vector<std::pair<std::string, std::string>> attributes_;
+  std::vector<std::unique_ptr<Element>> children_;
+};
+
+}  // namespace openplx::mjcf
