@@ -8,8 +8,9 @@
 
 namespace openplx::mjcf {
 
-CheckResult check_mjcf(const std::string& xml_path, const snap::PhysicsView& view, const snap::SnapResult& snap,
-                       const std::string& prefix, const std::string& root_name, double tolerance) {
+CheckResult check_mjcf(const std::string& xml_path, const snap::PhysicsView& view,
+                       const snap::SnapResult& snap, const std::string& prefix, const std::string& root_name,
+                       double tolerance) {
   CheckResult result;
   char error[1000] = "";
   mjModel* model = mj_loadXML(xml_path.c_str(), nullptr, error, sizeof(error));

@@ -12,7 +12,7 @@ namespace openplx::mjcf {
 
 struct CheckResult {
   bool loaded = false;
-  std::string load_error;         // MuJoCo's message when loading failed
+  std::string load_error;             // MuJoCo's message when loading failed
   std::vector<std::string> problems;  // pose or constraint mismatches, one line each
   double max_position_error = 0.0;
   double max_rotation_error = 0.0;
@@ -20,7 +20,8 @@ struct CheckResult {
 };
 
 // `xml_path` must be a file (mesh paths in it resolve against its folder). Body names are `prefix` + path.
-CheckResult check_mjcf(const std::string& xml_path, const snap::PhysicsView& view, const snap::SnapResult& snap,
-                       const std::string& prefix, const std::string& root_name, double tolerance = 1e-9);
+CheckResult check_mjcf(const std::string& xml_path, const snap::PhysicsView& view,
+                       const snap::SnapResult& snap, const std::string& prefix, const std::string& root_name,
+                       double tolerance = 1e-9);
 
 }  // namespace openplx::mjcf

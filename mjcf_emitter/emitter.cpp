@@ -20,14 +20,14 @@ using natives::affine_inverse;
 constexpr int kWorldVertex = -1;
 
 struct TreeEdge {
-  int mate = -1;    // -1: a free joint or a static body
+  int mate = -1;              // -1: a free joint or a static body
   int parent = kWorldVertex;  // node index of the parent body, or the world
 };
 
 class Emitter {
  public:
-  Emitter(const sn::PhysicsView& view, const sn::SnapResult& snap, fe::Evaluator& ev, const EmitOptions& options,
-          fe::DiagnosticSink& sink)
+  Emitter(const sn::PhysicsView& view, const sn::SnapResult& snap, fe::Evaluator& ev,
+          const EmitOptions& options, fe::DiagnosticSink& sink)
       : view_(view), snap_(snap), ev_(ev), options_(options), sink_(sink) {}
 
   Emitted run() {
@@ -43,7 +43,12 @@ class Emitter {
         .set("balanceinertia", "false")
         .set("fusestatic", "false")
         .set("discardvisual", "false");
-    root.add("option").set("timestep", 0.002).set("gravity", "0 0 -9.81").set("integrator", "Euler");
+    root.add("option").set("timestep", kTimestep).set("gravity", "0 0 -9.81").set("integrator", "Euler");
+    for (const sn::Unsupported& u : view_.unsupported) {
+      warn(u.where, "`" + u.path + "` is a " + u.type +
+                        ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
+                        "were left out");
+    }
     choose_tree();
     assets_ = &root.add("asset");
     Element& world = root.add("worldbody");
@@ -77,10 +82,14 @@ class Emitter {
     switch (mate.type) {
       case sn::MateType::Hinge:
       case sn::MateType::Prismatic:
-      case sn::MateType::Cylindrical: return 1;
-      case sn::MateType::Lock: return 2;
-      case sn::MateType::Ball: return 3;
-      default: return 4;
+      case sn::MateType::Cylindrical:
+        return 1;
+      case sn::MateType::Lock:
+        return 2;
+      case sn::MateType::Ball:
+        return 3;
+      default:
+        return 4;
     }
   }
 
@@ -90,8 +99,10 @@ class Emitter {
       case sn::MateType::Prismatic:
       case sn::MateType::Cylindrical:
       case sn::MateType::Ball:
-      case sn::MateType::Lock: return true;
-      default: return false;
+      case sn::MateType::Lock:
+        return true;
+      default:
+        return false;
     }
   }
 
@@ -117,7 +128,8 @@ class Emitter {
       if (a == b) continue;  // both on one body (or both on the world): nothing to join
       adjacency_.push_back({static_cast<int>(m), a, b, edge_cost(mate, has_interactions[m])});
     }
-    using Item = std::tuple<int, int, int>;  // cost, mate index (declaration order breaks ties), adjacency index
+    using Item =
+        std::tuple<int, int, int>;  // cost, mate index (declaration order breaks ties), adjacency index
     std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
     auto reach = [&](int vertex) {
       for (size_t k = 0; k < adjacency_.size(); ++k) {
@@ -189,8 +201,8 @@ class Emitter {
       if (item.depth > kMaxBodyDepth) {
         sink_.report(fe::DiagCode::MjcfTooDeep, view_.nodes[item.node].where,
                      "the body chain reaches " + view_.nodes[item.node].path + " at depth " +
-                         std::to_string(item.depth) + "; MuJoCo 2.2.2 reads at most " + std::to_string(kMaxBodyDepth) +
-                         " nested bodies");
+                         std::to_string(item.depth) + "; MuJoCo 2.2.2 reads at most " +
+                         std::to_string(kMaxBodyDepth) + " nested bodies");
         continue;
       }
       Element& body = emit_body(*item.parent_element, item.node);
@@ -234,14 +246,21 @@ class Emitter {
       return &j;
     };
     switch (mate.type) {
-      case sn::MateType::Hinge: joint("hinge", "", mate.initial_angle); break;
-      case sn::MateType::Prismatic: joint("slide", "", mate.initial_position); break;
+      case sn::MateType::Hinge:
+        joint("hinge", "", mate.initial_angle);
+        break;
+      case sn::MateType::Prismatic:
+        joint("slide", "", mate.initial_position);
+        break;
       case sn::MateType::Cylindrical:
         joint("slide", ".slide", mate.initial_position);
         joint("hinge", ".hinge", mate.initial_angle);
         break;
-      case sn::MateType::Ball: joint("ball", "", 0.0); break;
-      default: break;
+      case sn::MateType::Ball:
+        joint("ball", "", 0.0);
+        break;
+      default:
+        break;
     }
   }
 
@@ -280,10 +299,13 @@ class Emitter {
     std::optional<MassProperties> p = combine(parts);
     if (!p) {
       const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
-      warn(n.where, "`" + n.path + ".inertia` gives no tensor and the body has no geometry to compute one from; " +
+      warn(n.where, "`" + n.path +
+                        ".inertia` gives no tensor and the body has no geometry to compute one from; " +
                         "used a " + number(mass) + " kg sphere of radius 0.1 m");
-      body.add("inertial").set("pos", "0 0 0").set("mass", mass).set("diaginertia",
-                                                                      Eigen::Vector3d::Constant(0.4 * mass * 0.01));
+      body.add("inertial")
+          .set("pos", "0 0 0")
+          .set("mass", mass)
+          .set("diaginertia", Eigen::Vector3d::Constant(0.4 * mass * 0.01));
       return;
     }
     if (n.body.mass > 0) {  // the model's mass, distributed like the geometry
@@ -293,9 +315,9 @@ class Emitter {
     body.add("inertial")
         .set("pos", p->com)
         .set("mass", p->mass)
-        .set("fullinertia", number(p->inertia(0, 0)) + " " + number(p->inertia(1, 1)) + " " + number(p->inertia(2, 2)) +
-                                " " + number(p->inertia(0, 1)) + " " + number(p->inertia(0, 2)) + " " +
-                                number(p->inertia(1, 2)));
+        .set("fullinertia", number(p->inertia(0, 0)) + " " + number(p->inertia(1, 1)) + " " +
+                                number(p->inertia(2, 2)) + " " + number(p->inertia(0, 1)) + " " +
+                                number(p->inertia(0, 2)) + " " + number(p->inertia(1, 2)));
   }
 
   void emit_geom(Element& parent, const sn::Geometry& g, const sn::Transform& pose, bool on_static) {
@@ -307,7 +329,7 @@ class Emitter {
     const Eigen::Quaterniond y_to_z(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
     const bool primitive = g.shape == Shape::Box || g.shape == Shape::Sphere || g.shape == Shape::Cylinder ||
                            g.shape == Shape::Capsule;
-    const double smallest = g.shape == Shape::Box ? g.size.minCoeff()
+    const double smallest = g.shape == Shape::Box      ? g.size.minCoeff()
                             : g.shape == Shape::Sphere ? g.size.x()
                                                        : std::min(g.size.x(), g.size.y());
     if (primitive && !(smallest > 0)) {
@@ -315,8 +337,12 @@ class Emitter {
       return;
     }
     switch (g.shape) {
-      case Shape::Box: geom.set("type", "box").set("size", Eigen::Vector3d(g.size / 2)); break;
-      case Shape::Sphere: geom.set("type", "sphere").set("size", g.size.x()); break;
+      case Shape::Box:
+        geom.set("type", "box").set("size", Eigen::Vector3d(g.size / 2));
+        break;
+      case Shape::Sphere:
+        geom.set("type", "sphere").set("size", g.size.x());
+        break;
       case Shape::Cylinder:
       case Shape::Capsule:
         geom.set("type", g.shape == Shape::Cylinder ? "cylinder" : "capsule")
@@ -325,8 +351,9 @@ class Emitter {
         break;
       case Shape::Plane:
         if (!on_static) {
-          warn(g.where, "`" + g.path + "` is a plane on a moving body; MuJoCo 2.2.2 allows planes only on static "
-                                       "bodies, so it was left out");
+          warn(g.where, "`" + g.path +
+                            "` is a plane on a moving body; MuJoCo 2.2.2 allows planes only on static "
+                            "bodies, so it was left out");
           return;
         }
         geom.set("type", "plane").set("size", "0 0 1");
@@ -338,8 +365,9 @@ class Emitter {
         break;
       }
       default:
-        warn(g.where, "`" + g.path + "` is a geometry MuJoCo 2.2.2 cannot take here (convex or triangle mesh given "
-                                     "by vertices); it was left out");
+        warn(g.where, "`" + g.path +
+                          "` is a geometry MuJoCo 2.2.2 cannot take here (convex or triangle mesh given "
+                          "by vertices); it was left out");
         return;
     }
     geom.set("pos", frame.position).set_quat("quat", frame.rotation);
@@ -358,18 +386,22 @@ class Emitter {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (!fs::is_regular_file(g.file, ec)) {
-      sink_.report(fe::DiagCode::MjcfMissingAsset, g.where, "mesh file " + g.file + " of `" + g.path + "` not found");
+      sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
+                   "mesh file " + g.file + " of `" + g.path + "` not found");
       return {};
     }
     std::string ext = fs::path(g.file).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext != ".obj" && ext != ".stl" && ext != ".msh") {
       sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
-                   "mesh file " + g.file + " of `" + g.path + "` is " + ext + "; MuJoCo 2.2.2 reads OBJ, binary STL and MSH");
+                   "mesh file " + g.file + " of `" + g.path + "` is " + ext +
+                       "; MuJoCo 2.2.2 reads OBJ, binary STL and MSH");
       return {};
     }
     std::string file = g.file;
-    if (!options_.output_dir.empty()) file = fs::path(g.file).lexically_relative(options_.output_dir).generic_string();
+    if (!options_.output_dir.empty())
+      file = fs::path(g.file).lexically_relative(options_.output_dir).generic_string();
     const std::string mesh_name = name(g.path);
     assets_->add("mesh").set("name", mesh_name).set("file", file).set("scale", g.scale);
     return mesh_name;
@@ -402,7 +434,8 @@ class Emitter {
           const Eigen::Vector3d axis = c0.local.rotation * Eigen::Vector3d::UnitZ();
           const int count = mate.type == sn::MateType::Hinge ? 2 : 1;
           for (int k = 0; k < count; ++k) {
-            const Eigen::Vector3d point = count == 1 ? anchor : Eigen::Vector3d(anchor + (k == 0 ? 0.05 : -0.05) * axis);
+            const Eigen::Vector3d point =
+                count == 1 ? anchor : Eigen::Vector3d(anchor + (k == 0 ? 0.05 : -0.05) * axis);
             Element& connect = equality.add("connect");
             connect.set("name", name(mate.path) + (count == 1 ? "" : (k == 0 ? ".a" : ".b"))).set("body1", a);
             if (e.b >= 0) connect.set("body2", b);
@@ -411,7 +444,8 @@ class Emitter {
           break;
         }
         default:
-          warn(mate.where, "`" + mate.path + "` closes a kinematic loop as a " + sn::mate_type_name(mate.type) +
+          warn(mate.where, "`" + mate.path + "` closes a kinematic loop as a " +
+                               sn::mate_type_name(mate.type) +
                                "; MuJoCo 2.2.2 has no exact equality for it, so it was left out");
           continue;
       }
@@ -420,8 +454,8 @@ class Emitter {
       }
       for (const sn::Interaction1D& i : view_.interactions) {
         if (i.mate == e.mate) {
-          warn(i.where, "`" + i.path + "` acts on `" + mate.path + "`, which closes a loop and has no MuJoCo joint; " +
-                            "it was left out");
+          warn(i.where, "`" + i.path + "` acts on `" + mate.path +
+                            "`, which closes a loop and has no MuJoCo joint; " + "it was left out");
         }
       }
     }
@@ -438,6 +472,7 @@ class Emitter {
     // Ranges and springs are joint attributes; several on one joint intersect (ranges) or add up (springs).
     std::map<Element*, std::pair<double, double>> ranges;
     std::map<Element*, std::pair<double, double>> springs;  // sum k, sum k * rest
+    std::map<Element*, double> dampings;
     for (const sn::Interaction1D& i : view_.interactions) {
       if (i.mate < 0 || !tree_mates_.count(i.mate)) continue;  // loop mates warned above
       const bool rotational = i.kind == K::TorsionSpring || i.kind == K::RotationalRange ||
@@ -461,11 +496,19 @@ class Emitter {
         case K::LinearSpring:
         case K::TorsionSpring: {
           double k = 0;
-          if (fe::ObjectId flex = object(i.object, "flexibility"); flex != fe::kNoObject) k = real(flex, "stiffness");
+          if (fe::ObjectId flex = object(i.object, "flexibility"); flex != fe::kNoObject)
+            k = real(flex, "stiffness");
           const double rest = real(i.object, i.kind == K::LinearSpring ? "position" : "angle");
           auto& [sum_k, sum_kr] = springs[joint];
           sum_k += k;
           sum_kr += k * rest;
+          dampings[joint] += spring_damping(i, k);
+          if (std::isfinite(real(i.object, "min_effort", -INFINITY)) ||
+              std::isfinite(real(i.object, "max_effort", INFINITY))) {
+            warn(i.where, "`" + i.path +
+                              ".min_effort`/`max_effort`: a MuJoCo joint spring has no force limit; the "
+                              "spring was emitted without one");
+          }
           signals_[i.object] = {"joint", joint_name};
           break;
         }
@@ -485,12 +528,15 @@ class Emitter {
           Element& a = actuators.add("motor");
           a.set("name", name(i.path)).set("joint", joint_name).set("gear", "1");
           effort_limits(a, i);
-          actuator_ctrl_[i.object] = {static_cast<int>(actuator_count_++),
-                                      real(i.object, i.kind == K::ForceMotor ? "default_force" : "default_torque")};
+          actuator_ctrl_[i.object] = {
+              static_cast<int>(actuator_count_++),
+              real(i.object, i.kind == K::ForceMotor ? "default_force" : "default_torque")};
           signals_[i.object] = {"actuator", name(i.path)};
           break;
         }
-        default: warn(i.where, "`" + i.path + "` has no MuJoCo mapping yet; it was left out"); break;
+        default:
+          warn(i.where, "`" + i.path + "` has no MuJoCo mapping yet; it was left out");
+          break;
       }
     }
     for (auto& [joint, range] : ranges) {
@@ -504,7 +550,18 @@ class Emitter {
     for (auto& [joint, spring] : springs) {
       joint->set("stiffness", spring.first);
       if (spring.first > 0 && spring.second != 0) joint->set("springref", spring.second / spring.first);
+      if (dampings[joint] > 0) joint->set("damping", dampings[joint]);
     }
+  }
+
+  // Viscous damping of a spring: MechanicalDamping gives it, ConstraintRelaxationTimeDamping gives the time
+  // (b = t k); the default is AGX's: a relaxation time of two time steps.
+  double spring_damping(const sn::Interaction1D& i, double k) {
+    const fe::ObjectId d = object(i.object, "dissipation");
+    if (d == fe::kNoObject) return 0.0;
+    if (const fe::Value* b = ev_.value(d, "damping_constant"); b && b->is_number()) return b->as_real();
+    if (const fe::Value* t = ev_.value(d, "relaxation_time"); t && t->is_number()) return t->as_real() * k;
+    return 2 * kTimestep * k;
   }
 
   fe::ObjectId object(fe::ObjectId id, std::string_view attribute) {
@@ -516,7 +573,8 @@ class Emitter {
     const double lo = real(i.object, "min_effort", -INFINITY), hi = real(i.object, "max_effort", INFINITY);
     if (std::isfinite(lo) || std::isfinite(hi)) {
       actuator.set("forcelimited", "true")
-          .set("forcerange", number(std::isfinite(lo) ? lo : -1e10) + " " + number(std::isfinite(hi) ? hi : 1e10));
+          .set("forcerange",
+               number(std::isfinite(lo) ? lo : -1e10) + " " + number(std::isfinite(hi) ? hi : 1e10));
     }
   }
 
@@ -538,12 +596,14 @@ class Emitter {
       if (s.input || !s.enabled || s.source == fe::kNoObject) continue;
       const std::string& type = s.type;
       auto ends_with = [&](std::string_view suffix) {
-        return type.size() >= suffix.size() && type.compare(type.size() - suffix.size(), suffix.size(), suffix) == 0;
+        return type.size() >= suffix.size() &&
+               type.compare(type.size() - suffix.size(), suffix.size(), suffix) == 0;
       };
       const int mate = mate_of(s.source);
       const int body = node_of(s.source);
       Element* joint = nullptr;
-      if (mate >= 0) joint = joint_for(mate, !ends_with("Position1DOutput") && !ends_with("LinearVelocity1DOutput"));
+      if (mate >= 0)
+        joint = joint_for(mate, !ends_with("Position1DOutput") && !ends_with("LinearVelocity1DOutput"));
       std::string element;
       if (joint && (ends_with(".AngleOutput") || ends_with("Position1DOutput"))) {
         element = "jointpos";
@@ -557,7 +617,8 @@ class Emitter {
         element = "framelinvel";
       } else if (body >= 0 && ends_with("AngularVelocity3DOutput")) {
         element = "frameangvel";
-      } else if (actuator_ctrl_.count(s.source) && (ends_with("Torque1DOutput") || ends_with("Force1DOutput"))) {
+      } else if (actuator_ctrl_.count(s.source) &&
+                 (ends_with("Torque1DOutput") || ends_with("Force1DOutput"))) {
         element = "actuatorfrc";
       } else {
         warn(ev_.graph().at(s.object).owner != fe::kNoObject ? view_where(s) : fe::SourceRange{},
@@ -630,6 +691,7 @@ class Emitter {
   }
 
   static constexpr double kMaxVelocityGain = 1000.0;
+  static constexpr double kTimestep = 0.002;
 
   struct Adjacent {
     int mate;

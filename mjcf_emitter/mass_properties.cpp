@@ -11,7 +11,8 @@ std::optional<MassProperties> unit_density_properties(const snap::Geometry& g) {
     case Shape::Box: {
       const double a = g.size.x(), b = g.size.y(), c = g.size.z();
       p.mass = a * b * c;
-      p.inertia.diagonal() << p.mass * (b * b + c * c) / 12, p.mass * (a * a + c * c) / 12, p.mass * (a * a + b * b) / 12;
+      p.inertia.diagonal() << p.mass * (b * b + c * c) / 12, p.mass * (a * a + c * c) / 12,
+          p.mass * (a * a + b * b) / 12;
       return p;
     }
     case Shape::Sphere: {
@@ -38,7 +39,8 @@ std::optional<MassProperties> unit_density_properties(const snap::Geometry& g) {
       p.inertia.diagonal() << across, axial, across;
       return p;
     }
-    default: return std::nullopt;
+    default:
+      return std::nullopt;
   }
 }
 

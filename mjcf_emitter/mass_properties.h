@@ -13,7 +13,7 @@ namespace openplx::mjcf {
 
 struct MassProperties {
   double mass = 0.0;
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();  // in the body frame
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();      // in the body frame
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about com, body axes
 };
 

@@ -23,7 +23,7 @@ class Element {
   Element& set(std::string_view key, int value) { return set(key, std::to_string(value)); }
   Element& set(std::string_view key, const Eigen::Vector3d& v);
   Element& set_quat(std::string_view key, const Eigen::Quaterniond& q);  // "w x y z", w >= 0
-  Element& add(std::string name);  // appends a child and returns it
+  Element& add(std::string name);                                        // appends a child and returns it
   Element& add(Element child);
 
   const std::string& name() const { return name_; }

@@ -22,6 +22,10 @@ class ViewBuilder {
     interaction1d_ = program.builtin_model("Physics.Interactions.Interaction1DOF");
     input_ = program.builtin_model("Physics.Signals.Input");
     output_ = program.builtin_model("Physics.Signals.Output");
+    for (const char* name :
+         {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base", "Sensors.LidarLogic"}) {
+      if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
+    }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
         {"Box", Geometry::Shape::Box},           {"Sphere", Geometry::Shape::Sphere},
         {"Cylinder", Geometry::Shape::Cylinder}, {"Capsule", Geometry::Shape::Capsule},
@@ -86,6 +90,12 @@ class ViewBuilder {
   void visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_root) {
     const fe::Object& obj = ev_.graph().at(id);
     int node = enclosing;
+    for (const fe::ModelInfo* m : unsupported_) {
+      if (!is_root && obj.type->is_subtype_of(m)) {
+        view_.unsupported.push_back({id, ev_.graph().path(id), m->qualified, where_of(id)});
+        return;  // nothing inside maps either
+      }
+    }
     if (obj.type->is_subtype_of(system_) || obj.type->is_subtype_of(body_)) {
       node = add_node(id, enclosing, is_root);
     } else if (obj.type->is_subtype_of(connector_)) {
@@ -399,6 +409,7 @@ class ViewBuilder {
   fe::ModelInfo* interaction1d_ = nullptr;
   fe::ModelInfo* input_ = nullptr;
   fe::ModelInfo* output_ = nullptr;
+  std::vector<fe::ModelInfo*> unsupported_;
   std::vector<std::pair<fe::ModelInfo*, MateType>> mate_kinds_;
   std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;
   std::vector<std::pair<fe::ModelInfo*, Interaction1D::Kind>> kinds1d_;

@@ -112,6 +112,15 @@ struct Mate {
   frontend::SourceRange where;
 };
 
+// A model with no MuJoCo counterpart (terrain, shovels, tracked belts, lidars): kept out of the view,
+// its mappable neighbours go on without it.
+struct Unsupported {
+  frontend::ObjectId object;
+  std::string path;
+  std::string type;
+  frontend::SourceRange where;
+};
+
 struct PhysicsView {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
@@ -119,6 +128,7 @@ struct PhysicsView {
   std::vector<Geometry> geometries;
   std::vector<Interaction1D> interactions;
   std::vector<Signal> signals;
+  std::vector<Unsupported> unsupported;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;

@@ -66,13 +66,16 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
            fe::DiagnosticSink& sink) {
   namespace fs = std::filesystem;
   // Beside the output (so relative mesh paths resolve), else in the temporary folder.
-  const fs::path dir = emit_options.output_dir.empty() ? fs::temp_directory_path() : fs::path(emit_options.output_dir);
+  const fs::path dir =
+      emit_options.output_dir.empty() ? fs::temp_directory_path() : fs::path(emit_options.output_dir);
   const fs::path file = dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + ".xml");
   const fe::SourceFile& source = evaluation.program->sources().file(evaluation.document->doc.file);
-  const fe::SourceRange at_file{evaluation.document->doc.file, source.content_begin(), source.content_begin()};
+  const fe::SourceRange at_file{evaluation.document->doc.file, source.content_begin(),
+                                source.content_begin()};
   std::string error;
   if (!write_file_atomically(file.string(), xml, error)) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_file, "--check cannot write " + file.string() + ": " + error);
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_file,
+                "--check cannot write " + file.string() + ": " + error);
     return;
   }
   mjcf::CheckResult result =
@@ -80,7 +83,8 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   std::error_code ec;
   fs::remove(file, ec);
   if (!result.loaded) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_file, "MuJoCo rejects the emitted MJCF: " + result.load_error);
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_file,
+                "MuJoCo rejects the emitted MJCF: " + result.load_error);
     return;
   }
   for (const std::string& problem : result.problems) {
@@ -105,14 +109,16 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
   snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
   snap::SnapResult assembled = snap::run_snap(view, sink);
-  if (options.dump == DumpKind::Snap) snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
+  if (options.dump == DumpKind::Snap)
+    snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
   if (options.dump != DumpKind::None || sink.has_errors()) return true;
   namespace fs = std::filesystem;
   const bool to_file = options.output && *options.output != "-";
   mjcf::EmitOptions emit_options;
   emit_options.model_name = evaluation.evaluator->root_name();
   emit_options.prefix = options.prefix;
-  if (to_file) emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
+  if (to_file)
+    emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, emit_options, sink);
   if (sink.has_errors()) return true;
   const std::string xml = emitted.document.to_string();
@@ -135,7 +141,8 @@ std::string usage() {
          "[--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
-         "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the signal\n"
+         "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the "
+         "signal\n"
          "manifest OUT.signals.json beside it). With --dump, prints an intermediate form instead.\n"
          "\n"
          "  --model NAME   the root model (default: the last model in FILE)\n"
@@ -293,7 +300,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   } else if (!failed) {
     std::string write_error;
     if (!write_file_atomically(*options->output, text.str(), write_error) ||
-        (!manifest.empty() && !write_file_atomically(manifest_path(*options->output), manifest, write_error))) {
+        (!manifest.empty() &&
+         !write_file_atomically(manifest_path(*options->output), manifest, write_error))) {
       err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
           << "]\n";
       return kExitInputError;

@@ -21,8 +21,8 @@ struct CliOptions {
   std::optional<std::string> output;  // "-" is stdout
   std::vector<std::string> bundle_dirs;
   bool strict = false;
-  bool check = false;   // --check: load the MJCF in MuJoCo and compare with SNAP
-  std::string prefix;   // --prefix P: prepended to every MuJoCo name
+  bool check = false;  // --check: load the MJCF in MuJoCo and compare with SNAP
+  std::string prefix;  // --prefix P: prepended to every MuJoCo name
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;
