@@ -43,7 +43,7 @@ class Emitter {
         .set("balanceinertia", "false")
         .set("fusestatic", "false")
         .set("discardvisual", "false");
-    root.add("option").set("timestep", kTimestep).set("gravity", "0 0 -9.81").set("integrator", "Euler");
+    root.add("option").set("timestep", kTimestep).set("gravity", gravity()).set("integrator", "Euler");
     for (const sn::Unsupported& u : view_.unsupported) {
       warn(u.where, "`" + u.path + "` is a " + u.type +
                         ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
@@ -55,6 +55,7 @@ class Emitter {
     emit_world_geoms(world);
     emit_bodies(world);
     emit_loop_closures(root);
+    emit_contact_pairs(root);
     emit_actuators(root);
     emit_sensors(root);
     if (assets_->children().empty()) drop_empty(root, "asset");
@@ -114,6 +115,11 @@ class Emitter {
     std::vector<bool> has_interactions(view_.mates.size(), false);
     for (const sn::Interaction1D& i : view_.interactions) {
       if (i.mate >= 0) has_interactions[i.mate] = true;
+    }
+    for (const sn::Signal& signal : view_.signals) {  // a read mate needs a joint to read
+      if (signal.input || !signal.enabled) continue;
+      const int m = mate_of(signal.source);
+      if (m >= 0) has_interactions[m] = true;
     }
     for (size_t m = 0; m < view_.mates.size(); ++m) {
       const sn::Mate& mate = view_.mates[m];
@@ -379,6 +385,7 @@ class Emitter {
     } else if (g.in_mass && !on_static) {
       geom.set("density", density_of(g));
     }
+    emitted_geoms_.insert(g.path);
     parent.add(std::move(geom));
   }
 
@@ -456,6 +463,44 @@ class Emitter {
         if (i.mate == e.mate) {
           warn(i.where, "`" + i.path + "` acts on `" + mate.path +
                             "`, which closes a loop and has no MuJoCo joint; " + "it was left out");
+        }
+      }
+    }
+  }
+
+  // One <pair> per pair of colliding geometries whose materials a SurfaceContact model names.
+  void emit_contact_pairs(Element& root) {
+    Element* contact = nullptr;
+    for (const std::unique_ptr<Element>& e : root.children()) {
+      if (e->name() == "contact") contact = e.get();
+    }
+    for (const sn::ContactModel& cm : view_.contact_models) {
+      const fe::Value* enabled = ev_.value(cm.object, "enabled");
+      if (enabled && enabled->kind == fe::Value::Kind::Bool && !enabled->bool_value) continue;
+      double mu = 1.0;
+      if (fe::ObjectId friction = object(cm.object, "friction"); friction != fe::kNoObject) {
+        mu = real(friction, "coefficient", 1.0);
+      }
+      for (const char* restitution : {"normal_restitution", "tangential_restitution"}) {
+        const fe::Value* v = ev_.value(cm.object, restitution);
+        if (v && v->is_number() && v->as_real() != 0.0) {
+          warn(cm.where, "`" + cm.path + "." + restitution + "` has no MuJoCo 2.2.2 parameter; its contacts are "
+                                                             "emitted without restitution");
+        }
+      }
+      size_t pairs = 0;
+      for (const sn::Geometry& a : view_.geometries) {
+        for (const sn::Geometry& b : view_.geometries) {
+          if (&a >= &b || a.visual || b.visual || !a.collides || !b.collides || a.owner == b.owner) continue;
+          const bool match = (a.material == cm.material1 && b.material == cm.material2) ||
+                             (a.material == cm.material2 && b.material == cm.material1);
+          if (!match || !emitted_geoms_.count(a.path) || !emitted_geoms_.count(b.path)) continue;
+          contact->add("pair")
+              .set("name", name(cm.path) + "/" + std::to_string(pairs++))
+              .set("geom1", name(a.path))
+              .set("geom2", name(b.path))
+              .set("condim", 3)
+              .set("friction", number(mu) + " " + number(mu) + " 0.005 0.0001 0.0001");
         }
       }
     }
@@ -552,6 +597,22 @@ class Emitter {
       if (spring.first > 0 && spring.second != 0) joint->set("springref", spring.second / spring.first);
       if (dampings[joint] > 0) joint->set("damping", dampings[joint]);
     }
+  }
+
+  // Simulation.Environment's uniform gravity field, else standard gravity.
+  Eigen::Vector3d gravity() {
+    Eigen::Vector3d g(0, 0, -9.81);
+    const fe::ObjectId root = view_.root >= 0 ? view_.nodes[view_.root].object : fe::kNoObject;
+    if (root == fe::kNoObject) return g;
+    const fe::ObjectId field = object(root, "gravity");
+    if (field == fe::kNoObject) return g;
+    const fe::ObjectId vector = object(field, "vector");
+    if (vector == fe::kNoObject) {
+      warn(view_.nodes[view_.root].where, "`gravity` is not a uniform field; MuJoCo has only uniform gravity, so "
+                                          "standard gravity was used");
+      return g;
+    }
+    return {real(vector, "x"), real(vector, "y"), real(vector, "z")};
   }
 
   // Viscous damping of a spring: MechanicalDamping gives it, ConstraintRelaxationTimeDamping gives the time
@@ -713,6 +774,7 @@ class Emitter {
   std::map<int, Element*> body_element_;
   std::map<int, std::vector<Element*>> joint_of_mate_;
   std::map<int, double> mass_on_geoms_;
+  std::set<std::string> emitted_geoms_;
   std::map<fe::ObjectId, std::pair<int, double>> actuator_ctrl_;  // motor -> actuator index, initial ctrl
   std::map<fe::ObjectId, std::pair<std::string, std::string>> signals_;
   size_t actuator_count_ = 0;

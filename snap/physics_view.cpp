@@ -22,6 +22,7 @@ class ViewBuilder {
     interaction1d_ = program.builtin_model("Physics.Interactions.Interaction1DOF");
     input_ = program.builtin_model("Physics.Signals.Input");
     output_ = program.builtin_model("Physics.Signals.Output");
+    contact_model_ = program.builtin_model("Physics.Interactions.SurfaceContact.Model");
     for (const char* name :
          {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base", "Sensors.LidarLogic"}) {
       if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
@@ -108,6 +109,9 @@ class ViewBuilder {
       add_interaction(id);
     } else if (is(obj, input_) || is(obj, output_)) {
       add_signal(id);
+    } else if (is(obj, contact_model_)) {
+      view_.contact_models.push_back(
+          {id, ev_.graph().path(id), object(id, "material_1"), object(id, "material_2"), where_of(id)});
     }
     // Children in reverse so the stack pops them in declaration order.
     std::vector<fe::ObjectId> children;
@@ -409,6 +413,7 @@ class ViewBuilder {
   fe::ModelInfo* interaction1d_ = nullptr;
   fe::ModelInfo* input_ = nullptr;
   fe::ModelInfo* output_ = nullptr;
+  fe::ModelInfo* contact_model_ = nullptr;
   std::vector<fe::ModelInfo*> unsupported_;
   std::vector<std::pair<fe::ModelInfo*, MateType>> mate_kinds_;
   std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;

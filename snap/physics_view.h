@@ -112,6 +112,15 @@ struct Mate {
   frontend::SourceRange where;
 };
 
+// Contact properties for a pair of materials (Physics.Interactions.SurfaceContact.Model).
+struct ContactModel {
+  frontend::ObjectId object;
+  std::string path;
+  frontend::ObjectId material1 = frontend::kNoObject;
+  frontend::ObjectId material2 = frontend::kNoObject;
+  frontend::SourceRange where;
+};
+
 // A model with no MuJoCo counterpart (terrain, shovels, tracked belts, lidars): kept out of the view,
 // its mappable neighbours go on without it.
 struct Unsupported {
@@ -129,6 +138,7 @@ struct PhysicsView {
   std::vector<Interaction1D> interactions;
   std::vector<Signal> signals;
   std::vector<Unsupported> unsupported;
+  std::vector<ContactModel> contact_models;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;

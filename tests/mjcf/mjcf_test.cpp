@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "mjcf_emitter/check.h"
 #include "snap/physics_view.h"
@@ -156,6 +157,172 @@ TEST_F(Mjcf, LinearSpringTestRodComesToRest) {
   EXPECT_NEAR(d->qvel[0], 0.0, 1e-3);
   mj_deleteData(d);
   mj_deleteModel(m);
+}
+
+// LinearRangeTest (corpus README): the rod falls onto its range end; after 2 s z = -1.0 (connector offset
+// -0.5 plus range end -0.5). MuJoCo's limit is soft: with the default solref/solimp the 10 kg rod sinks
+// m g / k_limit ≈ 0.4 mm into it, inside AGXUnity's 1 mm.
+TEST_F(Mjcf, LinearRangeTestRodRestsOnTheRangeEnd) {
+  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/LinearRangeTest.openplx").string()))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("range"));
+  ASSERT_NE(m, nullptr);
+  mjData* d = mj_makeData(m);
+  while (d->time < 2.0) mj_step(m, d);
+  const int body = mj_name2id(m, mjOBJ_BODY, "falling_rod.rod1");
+  EXPECT_NEAR(d->xpos[3 * body + 2], -1.0, 1e-3);
+  EXPECT_NEAR(d->qvel[0], 0.0, 1e-3);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+// multi_interaction (corpus README): all seven interactions of each mate are in the MJCF: two actuators, the
+// two ranges intersected into the joint's range, the two springs added into its stiffness.
+TEST_F(Mjcf, MultiInteractionExpressesAllSevenPerMate) {
+  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/multi_interaction.openplx").string()))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("multi"));
+  ASSERT_NE(m, nullptr);
+  ASSERT_EQ(m->njnt, 2);
+  EXPECT_EQ(m->nu, 4);
+  for (int j = 0; j < m->njnt; ++j) {
+    SCOPED_TRACE(mj_id2name(m, mjOBJ_JOINT, j));
+    int actuators = 0;
+    for (int u = 0; u < m->nu; ++u) actuators += m->actuator_trnid[2 * u] == j;
+    EXPECT_EQ(actuators, 2);
+    EXPECT_TRUE(m->jnt_limited[j]);
+    EXPECT_EQ(m->jnt_range[2 * j], -1.0);
+    EXPECT_EQ(m->jnt_range[2 * j + 1], 1.0);
+    EXPECT_EQ(m->jnt_stiffness[j], 200.0);  // 100 + 100
+  }
+  mj_deleteModel(m);
+  accept_all_diags();
+}
+
+// material_scene (corpus README): every box keeps its material and each box-ground material pair has a
+// contact model: one <pair> with that model's friction.
+TEST_F(Mjcf, MaterialSceneHasAContactPairPerMaterialPair) {
+  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/material_scene.openplx").string()))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("materials"));
+  ASSERT_NE(m, nullptr);
+  ASSERT_EQ(m->npair, 3);
+  const std::map<std::string, double> friction = {
+      {"Box1.geometry", 0.1}, {"Box2.geometry", 0.5}, {"BoxInline.geometry", 1.0}};
+  const int ground = mj_name2id(m, mjOBJ_GEOM, "Ground.geometry");
+  for (int p = 0; p < m->npair; ++p) {
+    const int g1 = m->pair_geom1[p], g2 = m->pair_geom2[p];
+    const std::string box = mj_id2name(m, mjOBJ_GEOM, g1 == ground ? g2 : g1);
+    EXPECT_TRUE(g1 == ground || g2 == ground);
+    EXPECT_EQ(m->pair_friction[5 * p], friction.at(box)) << box;
+  }
+  mj_deleteModel(m);
+  EXPECT_EQ(count(fe::DiagCode::MjcfUnmapped), 6u);  // restitution, two per contact model
+  accept_all_diags();
+}
+
+// A parallelogram four-bar under gravity: three hinges are joints, the fourth closes the loop as two connect
+// constraints. MuJoCo's equalities are soft (default solref 0.02 s): the closure may give a few millimetres
+// under load, so 5 mm over 5 s is the bar; it must not drift apart.
+TEST_F(Mjcf, FourBarLinkageHoldsItsClosure) {
+  const std::string link =
+      "Link is Physics3D.Bodies.RigidBody:\n"
+      "    inertia.mass: 1\n"
+      "    geometry is Physics3D.Geometries.Box:\n"
+      "        size: {0.05, 0.05, 1}\n"
+      "        local_transform.position.z: 0.5\n"
+      "    bottom is Physics3D.Interactions.MateConnector:\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n"
+      "    top is Physics3D.Interactions.MateConnector:\n"
+      "        position: {0, 0, 1}\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n";
+  ASSERT_TRUE(load(link +
+                   "Coupler is Physics3D.Bodies.RigidBody:\n"
+                   "    inertia.mass: 1\n"
+                   "    geometry is Physics3D.Geometries.Box:\n"
+                   "        size: {1, 0.05, 0.05}\n"
+                   "        local_transform.position.x: 0.5\n"
+                   "    left is Physics3D.Interactions.MateConnector:\n"
+                   "        main_axis: Math.Vec3.Y_AXIS()\n"
+                   "        normal: Math.Vec3.Z_AXIS()\n"
+                   "    right is Physics3D.Interactions.MateConnector:\n"
+                   "        position: {1, 0, 0}\n"
+                   "        main_axis: Math.Vec3.Y_AXIS()\n"
+                   "        normal: Math.Vec3.Z_AXIS()\n"
+                   "FourBar is Physics3D.System:\n"
+                   "    ground_left is Physics3D.Interactions.MateConnector:\n"
+                   "        main_axis: Math.Vec3.Y_AXIS()\n"
+                   "        normal: Math.Vec3.Z_AXIS()\n"
+                   "    ground_right is Physics3D.Interactions.MateConnector:\n"
+                   "        position: {1, 0, 0}\n"
+                   "        main_axis: Math.Vec3.Y_AXIS()\n"
+                   "        normal: Math.Vec3.Z_AXIS()\n"
+                   "    crank is Link\n"
+                   "    rocker is Link\n"
+                   "    coupler is Coupler\n"
+                   "    h1 is Physics3D.Interactions.Hinge:\n"
+                   "        connectors: [ground_left, crank.bottom]\n"
+                   "        initial_angle: 0.4\n"
+                   "    h2 is Physics3D.Interactions.Hinge:\n"
+                   "        connectors: [crank.top, coupler.left]\n"
+                   "        initial_angle: -0.4\n"
+                   "    h3 is Physics3D.Interactions.Hinge:\n"
+                   "        connectors: [coupler.right, rocker.top]\n"
+                   "        initial_angle: 0.4\n"
+                   "    h4 is Physics3D.Interactions.Hinge:\n"
+                   "        connectors: [ground_right, rocker.bottom]\n"))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("fourbar"));
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->neq, 2);  // the loop-closing hinge: two points on its axis
+  mjData* d = mj_makeData(m);
+  const int coupler = mj_name2id(m, mjOBJ_BODY, "coupler");
+  const int rocker = mj_name2id(m, mjOBJ_BODY, "rocker");
+  double worst = 0;
+  while (d->time < 5.0) {
+    mj_step(m, d);
+    // coupler.right at local (1, 0, 0), rocker.top at local (0, 0, 1).
+    Eigen::Vector3d a, b;
+    for (int k = 0; k < 3; ++k) {
+      a[k] = d->xpos[3 * coupler + k] + d->xmat[9 * coupler + 3 * k + 0];
+      b[k] = d->xpos[3 * rocker + k] + d->xmat[9 * rocker + 3 * k + 2];
+    }
+    worst = std::max(worst, (a - b).norm());
+  }
+  EXPECT_LT(worst, 5e-3);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
+  std::string text =
+      "Link is Physics3D.Bodies.RigidBody:\n"
+      "    inertia.mass: 1\n"
+      "    geometry is Physics3D.Geometries.Box:\n"
+      "        size: {0.1, 0.1, 1}\n"
+      "    bottom is Physics3D.Interactions.MateConnector:\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n"
+      "    top is Physics3D.Interactions.MateConnector:\n"
+      "        position: {0, 0, 1}\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n"
+      "Chain is Physics3D.System:\n"
+      "    base is Physics3D.Interactions.MateConnector:\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n";
+  for (int i = 0; i < 95; ++i) text += "    l" + std::to_string(i) + " is Link\n";
+  for (int i = 0; i < 95; ++i) {
+    text += "    h" + std::to_string(i) + " is Physics3D.Interactions.Hinge:\n        connectors: [" +
+            (i == 0 ? std::string("base") : "l" + std::to_string(i - 1) + ".top") + ", l" + std::to_string(i) +
+            ".bottom]\n";
+  }
+  ASSERT_TRUE(load(text)) << all_diags();
+  emit("deep");
+  EXPECT_NE(expect_diag_containing(fe::DiagCode::MjcfTooDeep, "l90").find("MuJoCo 2.2.2 reads at most 90"),
+            std::string::npos);
 }
 
 }  // namespace
