@@ -20,12 +20,15 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path model_file(size_t bodies) {
-  const fs::path path = fs::temp_directory_path() / ("openplx_mjcf_bench_" + std::to_string(bodies) + ".openplx");
+  const fs::path path =
+      fs::temp_directory_path() / ("openplx_mjcf_bench_" + std::to_string(bodies) + ".openplx");
   if (!fs::exists(path)) std::ofstream(path) << openplx::bench::generate_mechanism(bodies, false);
   return path;
 }
 
-fs::path xml_file(size_t bodies) { return fs::path(model_file(bodies)).replace_extension(".xml"); }
+fs::path xml_file(size_t bodies) {
+  return fs::path(model_file(bodies)).replace_extension(".xml");
+}
 
 void BM_Openplx2Mjcf(benchmark::State& state) {
   const auto bodies = static_cast<size_t>(state.range(0));
@@ -33,12 +36,14 @@ void BM_Openplx2Mjcf(benchmark::State& state) {
   for (auto _ : state) {
     fe::SourceManager sources;
     fe::DiagnosticSink sink;
-    fe::Evaluation evaluation = fe::evaluate_file({input.string(), std::nullopt, {}, std::nullopt}, sources, sink);
+    fe::Evaluation evaluation =
+        fe::evaluate_file({input.string(), std::nullopt, {}, std::nullopt}, sources, sink);
     sn::PhysicsView view = sn::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
     sn::SnapResult assembled = sn::run_snap(view, sink);
     openplx::mjcf::EmitOptions options;
     options.model_name = "Scene";
-    openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink);
+    openplx::mjcf::Emitted emitted =
+        openplx::mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink);
     std::ofstream(xml_file(bodies)) << emitted.document.to_string();
     if (sink.has_errors()) state.SkipWithError("generated model has errors");
   }

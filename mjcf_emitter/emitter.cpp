@@ -5,6 +5,7 @@
 #include <map>
 #include <queue>
 #include <set>
+#include <unordered_map>
 
 #include "frontend/quoted.h"
 #include "mjcf_emitter/mass_properties.h"
@@ -137,11 +138,13 @@ class Emitter {
     using Item =
         std::tuple<int, int, int>;  // cost, mate index (declaration order breaks ties), adjacency index
     std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    std::unordered_map<int, std::vector<int>> incident;  // vertex -> adjacency indices
+    for (size_t k = 0; k < adjacency_.size(); ++k) {
+      incident[adjacency_[k].a].push_back(static_cast<int>(k));
+      incident[adjacency_[k].b].push_back(static_cast<int>(k));
+    }
     auto reach = [&](int vertex) {
-      for (size_t k = 0; k < adjacency_.size(); ++k) {
-        const auto& e = adjacency_[k];
-        if (e.a == vertex || e.b == vertex) queue.emplace(e.cost, e.mate, static_cast<int>(k));
-      }
+      for (int k : incident[vertex]) queue.emplace(adjacency_[k].cost, adjacency_[k].mate, k);
     };
     auto grow = [&]() {
       while (!queue.empty()) {
@@ -228,9 +231,7 @@ class Emitter {
     if (free_roots_.count(node)) body.add("freejoint").set("name", name(n.path));
     if (edges_[node].mate >= 0) emit_joints(body, node, edges_[node].mate);
     emit_inertial(body, node);
-    for (const sn::Geometry& g : view_.geometries) {
-      if (g.owner == node) emit_geom(body, g, g.local, !n.body.dynamic);
-    }
+    for (const sn::Geometry* g : geometries_of(node)) emit_geom(body, *g, g->local, !n.body.dynamic);
     return body;
   }
 
@@ -270,6 +271,13 @@ class Emitter {
     }
   }
 
+  const std::vector<const sn::Geometry*>& geometries_of(int node) {
+    if (geometries_by_owner_.empty()) {
+      for (const sn::Geometry& g : view_.geometries) geometries_by_owner_[g.owner].push_back(&g);
+    }
+    return geometries_by_owner_[node];
+  }
+
   double density_of(const sn::Geometry& g) {
     if (g.material == fe::kNoObject) return 1000.0;
     const fe::Value* d = ev_.value(g.material, "density");
@@ -292,10 +300,10 @@ class Emitter {
     }
     std::vector<std::pair<const sn::Geometry*, double>> parts;
     bool meshes = false;
-    for (const sn::Geometry& g : view_.geometries) {
-      if (g.owner != node || !g.in_mass) continue;
-      parts.emplace_back(&g, density_of(g));
-      meshes = meshes || !unit_density_properties(g);
+    for (const sn::Geometry* g : geometries_of(node)) {
+      if (!g->in_mass) continue;
+      parts.emplace_back(g, density_of(*g));
+      meshes = meshes || !unit_density_properties(*g);
     }
     if (meshes) {
       // MuJoCo computes mesh volumes exactly (exactmeshinertia); the mass goes on the geoms.
@@ -484,8 +492,9 @@ class Emitter {
       for (const char* restitution : {"normal_restitution", "tangential_restitution"}) {
         const fe::Value* v = ev_.value(cm.object, restitution);
         if (v && v->is_number() && v->as_real() != 0.0) {
-          warn(cm.where, "`" + cm.path + "." + restitution + "` has no MuJoCo 2.2.2 parameter; its contacts are "
-                                                             "emitted without restitution");
+          warn(cm.where, "`" + cm.path + "." + restitution +
+                             "` has no MuJoCo 2.2.2 parameter; its contacts are "
+                             "emitted without restitution");
         }
       }
       size_t pairs = 0;
@@ -608,8 +617,9 @@ class Emitter {
     if (field == fe::kNoObject) return g;
     const fe::ObjectId vector = object(field, "vector");
     if (vector == fe::kNoObject) {
-      warn(view_.nodes[view_.root].where, "`gravity` is not a uniform field; MuJoCo has only uniform gravity, so "
-                                          "standard gravity was used");
+      warn(view_.nodes[view_.root].where,
+           "`gravity` is not a uniform field; MuJoCo has only uniform gravity, so "
+           "standard gravity was used");
       return g;
     }
     return {real(vector, "x"), real(vector, "y"), real(vector, "z")};
@@ -701,17 +711,22 @@ class Emitter {
 
   std::string view_path(fe::ObjectId id) const { return ev_.graph().path(id); }
   fe::SourceRange view_where(const sn::Signal&) const { return {}; }
-  int mate_of(fe::ObjectId id) const {
-    for (size_t m = 0; m < view_.mates.size(); ++m) {
-      if (view_.mates[m].object == id) return static_cast<int>(m);
+  int mate_of(fe::ObjectId id) {
+    if (mate_index_.empty()) {
+      for (size_t m = 0; m < view_.mates.size(); ++m)
+        mate_index_[view_.mates[m].object] = static_cast<int>(m);
     }
-    return -1;
+    auto it = mate_index_.find(id);
+    return it == mate_index_.end() ? -1 : it->second;
   }
-  int node_of(fe::ObjectId id) const {
-    for (size_t n = 0; n < view_.nodes.size(); ++n) {
-      if (view_.nodes[n].object == id && is_body(static_cast<int>(n))) return static_cast<int>(n);
+  int node_of(fe::ObjectId id) {
+    if (body_index_.empty()) {
+      for (size_t n = 0; n < view_.nodes.size(); ++n) {
+        if (is_body(static_cast<int>(n))) body_index_[view_.nodes[n].object] = static_cast<int>(n);
+      }
     }
-    return -1;
+    auto it = body_index_.find(id);
+    return it == body_index_.end() ? -1 : it->second;
   }
 
   // --------------------------------------------------------------------------------------- manifest
@@ -775,6 +790,9 @@ class Emitter {
   std::map<int, std::vector<Element*>> joint_of_mate_;
   std::map<int, double> mass_on_geoms_;
   std::set<std::string> emitted_geoms_;
+  std::unordered_map<fe::ObjectId, int> mate_index_;
+  std::unordered_map<fe::ObjectId, int> body_index_;
+  std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;
   std::map<fe::ObjectId, std::pair<int, double>> actuator_ctrl_;  // motor -> actuator index, initial ctrl
   std::map<fe::ObjectId, std::pair<std::string, std::string>> signals_;
   size_t actuator_count_ = 0;

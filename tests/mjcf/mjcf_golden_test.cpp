@@ -31,7 +31,9 @@ TEST(MjcfGolden, SamplesMatchTheirGoldenFiles) {
     SCOPED_TRACE(name);
     std::ostringstream stdout_text, stderr_text;
     const fs::path xml = out / (name + ".xml");
-    ASSERT_EQ(openplx::cli::run({entry.path().string(), "-o", xml.string(), "--check"}, stdout_text, stderr_text), 0)
+    ASSERT_EQ(
+        openplx::cli::run({entry.path().string(), "-o", xml.string(), "--check"}, stdout_text, stderr_text),
+        0)
         << stderr_text.str();
     const fs::path golden = fs::path(OPENPLX_TEST_DATA_DIR) / "golden/mjcf";
     EXPECT_EQ(read(xml), read(golden / (name + ".xml"))) << "review, then tools/update-golden";

@@ -238,41 +238,40 @@ TEST_F(Mjcf, FourBarLinkageHoldsItsClosure) {
       "        position: {0, 0, 1}\n"
       "        main_axis: Math.Vec3.Y_AXIS()\n"
       "        normal: Math.Vec3.Z_AXIS()\n";
-  ASSERT_TRUE(load(link +
-                   "Coupler is Physics3D.Bodies.RigidBody:\n"
-                   "    inertia.mass: 1\n"
-                   "    geometry is Physics3D.Geometries.Box:\n"
-                   "        size: {1, 0.05, 0.05}\n"
-                   "        local_transform.position.x: 0.5\n"
-                   "    left is Physics3D.Interactions.MateConnector:\n"
-                   "        main_axis: Math.Vec3.Y_AXIS()\n"
-                   "        normal: Math.Vec3.Z_AXIS()\n"
-                   "    right is Physics3D.Interactions.MateConnector:\n"
-                   "        position: {1, 0, 0}\n"
-                   "        main_axis: Math.Vec3.Y_AXIS()\n"
-                   "        normal: Math.Vec3.Z_AXIS()\n"
-                   "FourBar is Physics3D.System:\n"
-                   "    ground_left is Physics3D.Interactions.MateConnector:\n"
-                   "        main_axis: Math.Vec3.Y_AXIS()\n"
-                   "        normal: Math.Vec3.Z_AXIS()\n"
-                   "    ground_right is Physics3D.Interactions.MateConnector:\n"
-                   "        position: {1, 0, 0}\n"
-                   "        main_axis: Math.Vec3.Y_AXIS()\n"
-                   "        normal: Math.Vec3.Z_AXIS()\n"
-                   "    crank is Link\n"
-                   "    rocker is Link\n"
-                   "    coupler is Coupler\n"
-                   "    h1 is Physics3D.Interactions.Hinge:\n"
-                   "        connectors: [ground_left, crank.bottom]\n"
-                   "        initial_angle: 0.4\n"
-                   "    h2 is Physics3D.Interactions.Hinge:\n"
-                   "        connectors: [crank.top, coupler.left]\n"
-                   "        initial_angle: -0.4\n"
-                   "    h3 is Physics3D.Interactions.Hinge:\n"
-                   "        connectors: [coupler.right, rocker.top]\n"
-                   "        initial_angle: 0.4\n"
-                   "    h4 is Physics3D.Interactions.Hinge:\n"
-                   "        connectors: [ground_right, rocker.bottom]\n"))
+  ASSERT_TRUE(load(link + "Coupler is Physics3D.Bodies.RigidBody:\n"
+                          "    inertia.mass: 1\n"
+                          "    geometry is Physics3D.Geometries.Box:\n"
+                          "        size: {1, 0.05, 0.05}\n"
+                          "        local_transform.position.x: 0.5\n"
+                          "    left is Physics3D.Interactions.MateConnector:\n"
+                          "        main_axis: Math.Vec3.Y_AXIS()\n"
+                          "        normal: Math.Vec3.Z_AXIS()\n"
+                          "    right is Physics3D.Interactions.MateConnector:\n"
+                          "        position: {1, 0, 0}\n"
+                          "        main_axis: Math.Vec3.Y_AXIS()\n"
+                          "        normal: Math.Vec3.Z_AXIS()\n"
+                          "FourBar is Physics3D.System:\n"
+                          "    ground_left is Physics3D.Interactions.MateConnector:\n"
+                          "        main_axis: Math.Vec3.Y_AXIS()\n"
+                          "        normal: Math.Vec3.Z_AXIS()\n"
+                          "    ground_right is Physics3D.Interactions.MateConnector:\n"
+                          "        position: {1, 0, 0}\n"
+                          "        main_axis: Math.Vec3.Y_AXIS()\n"
+                          "        normal: Math.Vec3.Z_AXIS()\n"
+                          "    crank is Link\n"
+                          "    rocker is Link\n"
+                          "    coupler is Coupler\n"
+                          "    h1 is Physics3D.Interactions.Hinge:\n"
+                          "        connectors: [ground_left, crank.bottom]\n"
+                          "        initial_angle: 0.4\n"
+                          "    h2 is Physics3D.Interactions.Hinge:\n"
+                          "        connectors: [crank.top, coupler.left]\n"
+                          "        initial_angle: -0.4\n"
+                          "    h3 is Physics3D.Interactions.Hinge:\n"
+                          "        connectors: [coupler.right, rocker.top]\n"
+                          "        initial_angle: 0.4\n"
+                          "    h4 is Physics3D.Interactions.Hinge:\n"
+                          "        connectors: [ground_right, rocker.bottom]\n"))
       << all_diags();
   mjModel* m = load_mujoco(emit("fourbar"));
   ASSERT_NE(m, nullptr);
@@ -316,8 +315,8 @@ TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
   for (int i = 0; i < 95; ++i) text += "    l" + std::to_string(i) + " is Link\n";
   for (int i = 0; i < 95; ++i) {
     text += "    h" + std::to_string(i) + " is Physics3D.Interactions.Hinge:\n        connectors: [" +
-            (i == 0 ? std::string("base") : "l" + std::to_string(i - 1) + ".top") + ", l" + std::to_string(i) +
-            ".bottom]\n";
+            (i == 0 ? std::string("base") : "l" + std::to_string(i - 1) + ".top") + ", l" +
+            std::to_string(i) + ".bottom]\n";
   }
   ASSERT_TRUE(load(text)) << all_diags();
   emit("deep");
