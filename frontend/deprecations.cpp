@@ -70,6 +70,11 @@ std::optional<std::string_view> renamed_attribute(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<std::string_view> legacy_attribute(std::string_view current) {
+  if (current == "connectors") return std::string_view("charges");
+  return std::nullopt;
+}
+
 std::optional<std::string_view> renamed_method(std::string_view qualified) {
   for (const auto& [old_name, new_name] : kMethods) {
     if (old_name == qualified) return new_name;

@@ -14,8 +14,9 @@ namespace openplx::frontend {
 std::optional<std::string> renamed_model(std::string_view old_namespace, std::string_view name);
 std::vector<std::string_view> renamed_namespaces();  // "Physics.Charges", "Physics1D.Charges", ...
 
-// 0.17.8 attribute names: "charges" -> "connectors" (interactions).
+// 0.17.8 attribute names: "charges" -> "connectors" (interactions), and back.
 std::optional<std::string_view> renamed_attribute(std::string_view name);
+std::optional<std::string_view> legacy_attribute(std::string_view current);
 
 // Pre-0.10 camelCase methods: "Math.Quat.angleAxis" -> "Math.Quat.angle_axis".
 std::optional<std::string_view> renamed_method(std::string_view qualified);

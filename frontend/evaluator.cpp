@@ -339,9 +339,10 @@ void Evaluator::build_slots(ObjectId id) {
     // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
     std::vector<uint32_t> mine;
     if (const auto* list = candidates(slot.name)) mine = *list;
-    for (const auto& [old_name, list] : by_name) {
-      if (old_name != slot.name && is_renamed_to(obj, old_name, slot.name))
-        mine.insert(mine.end(), list.begin(), list.end());
+    if (std::optional<std::string_view> legacy = legacy_attribute(slot.name)) {
+      if (const auto* list = candidates(*legacy); list && is_renamed_to(obj, *legacy, slot.name)) {
+        mine.insert(mine.end(), list->begin(), list->end());
+      }
     }
     std::sort(mine.begin(), mine.end());  // back in priority order
 
