@@ -544,7 +544,6 @@ class Emitter {
           const double lo = real(i.object, "start"), hi = real(i.object, "end");
           auto [it, fresh] = ranges.try_emplace(joint, lo, hi);
           if (!fresh) it->second = {std::max(it->second.first, lo), std::min(it->second.second, hi)};
-          signals_[i.object] = {"joint", joint_name};
           break;
         }
         case K::LinearSpring:
@@ -563,7 +562,6 @@ class Emitter {
                               ".min_effort`/`max_effort`: a MuJoCo joint spring has no force limit; the "
                               "spring was emitted without one");
           }
-          signals_[i.object] = {"joint", joint_name};
           break;
         }
         case K::LinearVelocityMotor:
@@ -574,7 +572,6 @@ class Emitter {
           a.set("name", name(i.path)).set("joint", joint_name).set("kv", std::min(gain, kMaxVelocityGain));
           effort_limits(a, i);
           actuator_ctrl_[i.object] = {static_cast<int>(actuator_count_++), real(i.object, "target_speed")};
-          signals_[i.object] = {"actuator", name(i.path)};
           break;
         }
         case K::ForceMotor:
@@ -585,7 +582,6 @@ class Emitter {
           actuator_ctrl_[i.object] = {
               static_cast<int>(actuator_count_++),
               real(i.object, i.kind == K::ForceMotor ? "default_force" : "default_torque")};
-          signals_[i.object] = {"actuator", name(i.path)};
           break;
         }
         default:
@@ -692,8 +688,7 @@ class Emitter {
                  (ends_with("Torque1DOutput") || ends_with("Force1DOutput"))) {
         element = "actuatorfrc";
       } else {
-        warn(ev_.graph().at(s.object).owner != fe::kNoObject ? view_where(s) : fe::SourceRange{},
-             "output `" + s.path + "` (" + type + ") has no MuJoCo sensor yet; it was left out");
+        warn(s.where, "output `" + s.path + "` (" + type + ") has no MuJoCo sensor yet; it was left out");
         continue;
       }
       Element& sensor = sensors.add(element);
@@ -710,7 +705,6 @@ class Emitter {
   }
 
   std::string view_path(fe::ObjectId id) const { return ev_.graph().path(id); }
-  fe::SourceRange view_where(const sn::Signal&) const { return {}; }
   int mate_of(fe::ObjectId id) {
     if (mate_index_.empty()) {
       for (size_t m = 0; m < view_.mates.size(); ++m)

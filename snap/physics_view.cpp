@@ -237,6 +237,7 @@ class ViewBuilder {
     signal.path = ev_.graph().path(id);
     signal.type = obj.type->qualified;
     signal.source = object(id, "source");
+    signal.where = where_of(id);
     if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
       signal.enabled = e->bool_value;
     view_.signals.push_back(std::move(signal));

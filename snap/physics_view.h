@@ -86,6 +86,7 @@ struct Signal {
   std::string type;  // its model, e.g. "Physics.Signals.AngleOutput"
   frontend::ObjectId source = frontend::kNoObject;
   bool enabled = true;
+  frontend::SourceRange where;
 };
 
 struct Connector {
