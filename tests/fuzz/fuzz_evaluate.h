@@ -1,5 +1,5 @@
 // The body of the evaluator fuzz target: parse, pick the root model, instantiate and evaluate everything,
-// then print the values. Shared by the libFuzzer entry point and the regression test.
+// print the values, then assemble and emit MJCF. Shared by the libFuzzer entry point and the regression test.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +11,9 @@
 #include "frontend/evaluator.h"
 #include "frontend/pipeline.h"
 #include "frontend/value_format.h"
+#include "mjcf_emitter/emitter.h"
+#include "snap/physics_view.h"
+#include "snap/snap.h"
 
 namespace openplx::fuzz {
 
@@ -24,6 +27,13 @@ inline void evaluate_one(const uint8_t* data, size_t size) {
   if (evaluation.root == fe::kNoObject) return;
   std::ostringstream out;
   fe::dump_values(out, *evaluation.evaluator, evaluation.root);
+  // The passes after evaluation: the physics view, SNAP and the MJCF emitter.
+  openplx::snap::PhysicsView view =
+      openplx::snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
+  openplx::snap::SnapResult assembled = openplx::snap::run_snap(view, sink);
+  openplx::mjcf::EmitOptions options;
+  options.model_name = evaluation.evaluator->root_name();
+  out << openplx::mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink).document.to_string();
   fe::print_diagnostics(out, sources, sink.diagnostics());
 }
 
