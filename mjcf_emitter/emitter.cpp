@@ -434,19 +434,24 @@ class Emitter {
       const std::string a = e.a >= 0 ? name(view_.nodes[e.a].path) : "world";
       const std::string b = e.b >= 0 ? name(view_.nodes[e.b].path) : "world";
       // The anchor: connector 0 in its body's frame (MuJoCo derives body2's point from the assembled pose).
-      const Eigen::Vector3d anchor = view_.connectors[mate.connectors[0]].local.position;
-      const Eigen::Vector3d anchor_b = view_.connectors[mate.connectors[1]].local.position;
+      // A connector on the world side (World, or one owned by a system) is given in world coordinates.
+      const sn::Transform frame0 =
+          e.a >= 0 ? view_.connectors[mate.connectors[0]].local : snap_.connector_world[mate.connectors[0]];
+      const sn::Transform frame1 =
+          e.b >= 0 ? view_.connectors[mate.connectors[1]].local : snap_.connector_world[mate.connectors[1]];
+      const Eigen::Vector3d anchor = frame0.position;
       switch (mate.type) {
         case sn::MateType::Lock: {
           Element& weld = equality.add("weld").set("name", name(mate.path)).set("body1", a);
-          if (e.b >= 0) weld.set("body2", b).set("anchor", anchor_b);
+          if (e.b >= 0) weld.set("body2", b);
+          weld.set("anchor",
+                   frame1.position);  // where the error is measured: the weld point, in body2's frame
           break;
         }
         case sn::MateType::Ball:
         case sn::MateType::Hinge: {
           // A hinge closing a loop: two points on its axis (one would leave the axis free to tilt).
-          const sn::Connector& c0 = view_.connectors[mate.connectors[0]];
-          const Eigen::Vector3d axis = c0.local.rotation * Eigen::Vector3d::UnitZ();
+          const Eigen::Vector3d axis = frame0.rotation * Eigen::Vector3d::UnitZ();
           const int count = mate.type == sn::MateType::Hinge ? 2 : 1;
           for (int k = 0; k < count; ++k) {
             const Eigen::Vector3d point =

@@ -295,6 +295,50 @@ TEST_F(Mjcf, FourBarLinkageHoldsItsClosure) {
   mj_deleteModel(m);
 }
 
+// A loop closing on a connector owned by a moved system: the world side of the equality is given in world
+// coordinates, so the constraint starts satisfied (--check's equality residual).
+TEST_F(Mjcf, LoopClosureOnASystemConnectorStartsSatisfied) {
+  ASSERT_TRUE(
+      load("Link is Physics3D.Bodies.RigidBody:\n"
+           "    inertia.mass: 1\n"
+           "    geometry is Physics3D.Geometries.Box:\n"
+           "        size: {0.05, 0.05, 1}\n"
+           "        local_transform.position.z: 0.5\n"
+           "    bottom is Physics3D.Interactions.MateConnector:\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "    top is Physics3D.Interactions.MateConnector:\n"
+           "        position: {0, 0, 1}\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "Bracket is Physics3D.System:\n"
+           "    local_transform.position: {2, 0, 1}\n"
+           "    mount is Physics3D.Interactions.MateConnector:\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "Scene is Physics3D.System:\n"
+           "    base is Physics3D.Interactions.MateConnector:\n"
+           "        position: {2, 0, 0}\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "    bracket is Bracket\n"
+           "    link is Link\n"
+           "    hinge is Physics3D.Interactions.Hinge:\n"
+           "        connectors: [base, link.bottom]\n"
+           "    ball is Physics3D.Interactions.Ball:\n"
+           "        connectors: [bracket.mount, link.top]\n"))
+      << all_diags();
+  const std::string path = emit("bracket");
+  ASSERT_FALSE(sink_.has_errors()) << all_diags();
+  const mj::CheckResult check = mj::check_mjcf(path, view_, snap_, "", evaluator_->root_name());
+  ASSERT_TRUE(check.loaded) << check.load_error;
+  EXPECT_TRUE(check.problems.empty()) << check.problems.front();
+  EXPECT_LE(check.max_equality_residual, 1e-9);
+  EXPECT_NE(xml_.find("<connect name=\"ball\" body1=\"world\" body2=\"link\" anchor=\"2 0 1\"/>"),
+            std::string::npos)
+      << xml_;
+}
+
 TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
   std::string text =
       "Link is Physics3D.Bodies.RigidBody:\n"
