@@ -132,7 +132,12 @@ class Emitter {
       }
       const int a = vertex_of_connector(mate.connectors[0]);
       const int b = vertex_of_connector(mate.connectors[1]);
-      if (a == b) continue;  // both on one body (or both on the world): nothing to join
+      if (a == b) {
+        warn(mate.where, "`" + mate.path + "` joins two connectors of " +
+                             (a >= 0 ? "the same body `" + view_.nodes[a].path + "`" : "the world") +
+                             "; there is nothing for MuJoCo to constrain, so it was left out");
+        continue;
+      }
       adjacency_.push_back({static_cast<int>(m), a, b, edge_cost(mate, has_interactions[m])});
     }
     using Item =
