@@ -23,8 +23,8 @@ class ViewBuilder {
     input_ = program.builtin_model("Physics.Signals.Input");
     output_ = program.builtin_model("Physics.Signals.Output");
     contact_model_ = program.builtin_model("Physics.Interactions.SurfaceContact.Model");
-    for (const char* name :
-         {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base", "Sensors.LidarLogic"}) {
+    for (const char* name : {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
+                             "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic"}) {
       if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
