@@ -16,8 +16,9 @@ std::optional<std::string> import_plugin_source(const std::string& path, const s
     return std::nullopt;
   }
   if (extension == ".obj" || extension == ".stl") {
-    // A mesh: its file and scale, as the geometry bundles will read them.
-    return "`" + model_name + "`:\n    path is String: @\"" + path + "\"\n    scale is Real: 1.0\n";
+    // A mesh: a visual geometry reading the file (the Visuals bundle is always on the bundle path).
+    return "`" + model_name + "` is Visuals.Geometries.ExternalTriMeshGeometry:\n    path: @\"" + path +
+           "\"\n";
   }
   if (extension == ".agx") {
     error =

@@ -52,6 +52,7 @@ class Emitter {
     }
     choose_tree();
     assets_ = &root.add("asset");
+    emit_visual_materials();
     Element& world = root.add("worldbody");
     emit_world_geoms(world);
     emit_bodies(world);
@@ -390,6 +391,10 @@ class Emitter {
         return;
     }
     geom.set("pos", frame.position).set_quat("quat", frame.rotation);
+    if (g.visual) {
+      if (auto it = material_names_.find(g.material); it != material_names_.end())
+        geom.set("material", it->second);
+    }
     if (!g.collides) geom.set("contype", 0).set("conaffinity", 0);
     if (g.visual || !g.in_mass) geom.set("group", 3);  // outside inertiagrouprange: no mass
     if (auto it = mass_on_geoms_.find(g.owner); it != mass_on_geoms_.end() && g.in_mass && it->second > 0) {
@@ -400,6 +405,27 @@ class Emitter {
     }
     emitted_geoms_.insert(g.path);
     parent.add(std::move(geom));
+  }
+
+  // Visuals materials as MJCF materials: base colour tint -> rgba, 1 - roughness -> shininess (MuJoCo's is
+  // a glossiness), metallic -> reflectance. Textures have no mapping yet.
+  void emit_visual_materials() {
+    for (fe::ObjectId m : view_.visual_materials) {
+      const std::string path = ev_.graph().path(m);
+      Element& material = assets_->add("material");
+      material.set("name", name(path));
+      if (fe::ObjectId tint = object(m, "base_color_tint"); tint != fe::kNoObject) {
+        material.set("rgba", number(real(tint, "r", 1)) + " " + number(real(tint, "g", 1)) + " " +
+                                 number(real(tint, "b", 1)) + " " + number(real(tint, "a", 1)));
+      }
+      if (const fe::Value* r = ev_.value(m, "roughness"); r && r->is_number()) {
+        material.set("shininess", std::clamp(1.0 - r->as_real(), 0.0, 1.0));
+      }
+      if (const fe::Value* metal = ev_.value(m, "metallic"); metal && metal->is_number()) {
+        material.set("reflectance", std::clamp(metal->as_real(), 0.0, 1.0));
+      }
+      material_names_[m] = name(path);
+    }
   }
 
   std::string mesh_asset(const sn::Geometry& g) {
@@ -794,6 +820,7 @@ class Emitter {
   std::map<int, std::vector<Element*>> joint_of_mate_;
   std::map<int, double> mass_on_geoms_;
   std::set<std::string> emitted_geoms_;
+  std::map<fe::ObjectId, std::string> material_names_;
   std::unordered_map<fe::ObjectId, int> mate_index_;
   std::unordered_map<fe::ObjectId, int> body_index_;
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;

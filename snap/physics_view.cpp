@@ -23,6 +23,7 @@ class ViewBuilder {
     input_ = program.builtin_model("Physics.Signals.Input");
     output_ = program.builtin_model("Physics.Signals.Output");
     contact_model_ = program.builtin_model("Physics.Interactions.SurfaceContact.Model");
+    visual_material_ = program.builtin_model("Visuals.Materials.Material");
     for (const char* name : {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
                              "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic"}) {
       if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
@@ -109,6 +110,8 @@ class ViewBuilder {
       add_interaction(id);
     } else if (is(obj, input_) || is(obj, output_)) {
       add_signal(id);
+    } else if (is(obj, visual_material_)) {
+      view_.visual_materials.push_back(id);
     } else if (is(obj, contact_model_)) {
       view_.contact_models.push_back(
           {id, ev_.graph().path(id), object(id, "material_1"), object(id, "material_2"), where_of(id)});
@@ -415,6 +418,7 @@ class ViewBuilder {
   fe::ModelInfo* input_ = nullptr;
   fe::ModelInfo* output_ = nullptr;
   fe::ModelInfo* contact_model_ = nullptr;
+  fe::ModelInfo* visual_material_ = nullptr;
   std::vector<fe::ModelInfo*> unsupported_;
   std::vector<std::pair<fe::ModelInfo*, MateType>> mate_kinds_;
   std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;

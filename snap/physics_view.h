@@ -140,7 +140,9 @@ struct PhysicsView {
   std::vector<Signal> signals;
   std::vector<Unsupported> unsupported;
   std::vector<ContactModel> contact_models;
-  int root = kWorld;  // node of the root object, when it is a system or a body
+  std::vector<frontend::ObjectId>
+      visual_materials;  // Visuals.Materials.Material instances, the root included
+  int root = kWorld;     // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;
 };

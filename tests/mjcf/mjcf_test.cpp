@@ -339,6 +339,36 @@ TEST_F(Mjcf, LoopClosureOnASystemConnectorStartsSatisfied) {
       << xml_;
 }
 
+// visual_mat (corpus README): the visual material keeps its look as far as MJCF can: colour, 1 - roughness as
+// shininess (0.8), metallic as reflectance (0.4).
+TEST_F(Mjcf, VisualMaterialKeepsColourRoughnessAndMetallic) {
+  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/visual_mat.openplx").string()))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("visual_mat"));
+  ASSERT_NE(m, nullptr);
+  ASSERT_EQ(m->nmat, 1);
+  EXPECT_FLOAT_EQ(m->mat_shininess[0], 0.8f);
+  EXPECT_FLOAT_EQ(m->mat_reflectance[0], 0.4f);
+  EXPECT_FLOAT_EQ(m->mat_rgba[0], 1.0f);
+  EXPECT_FLOAT_EQ(m->mat_rgba[1], 0.0f);
+  mj_deleteModel(m);
+}
+
+// visual_mesh_import (corpus README): the imported OBJ becomes a visual mesh: drawn, never colliding.
+TEST_F(Mjcf, ImportedObjBecomesAVisualMesh) {
+  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/visual_mesh_import.openplx").string()))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("visual_mesh"));
+  ASSERT_NE(m, nullptr);
+  ASSERT_EQ(m->nmesh, 1);
+  ASSERT_EQ(m->ngeom, 1);
+  EXPECT_EQ(m->geom_type[0], mjGEOM_MESH);
+  EXPECT_EQ(m->geom_contype[0], 0);
+  EXPECT_EQ(m->geom_conaffinity[0], 0);
+  EXPECT_EQ(m->mesh_facenum[0], 20);  // the icosahedron (MuJoCo splits vertices per texture coordinate)
+  mj_deleteModel(m);
+}
+
 TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
   std::string text =
       "Link is Physics3D.Bodies.RigidBody:\n"
