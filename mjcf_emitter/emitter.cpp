@@ -198,7 +198,7 @@ class Emitter {
 
   void emit_bodies(Element& world) {
     // Children lists in declaration order.
-    std::map<int, std::vector<int>> children;
+    std::map<int, std::vector<int>>& children = tree_children_;
     for (size_t n = 0; n < view_.nodes.size(); ++n) {
       if (is_body(static_cast<int>(n))) children[edges_[n].parent].push_back(static_cast<int>(n));
     }
@@ -256,6 +256,7 @@ class Emitter {
       if (std::string(type) != "ball") j.set("axis", axis);
       if (ref != 0.0) j.set("ref", ref);
       joint_of_mate_[m].push_back(&j);
+      joint_info_[&j] = {node, pos, axis.normalized(), std::string(type) == "hinge"};
       return &j;
     };
     switch (mate.type) {
@@ -295,6 +296,8 @@ class Emitter {
     if (!n.body.dynamic) return;  // a static body needs no mass
     const bool tensor_given = !n.body.inertia.isZero();
     if (n.body.mass > 0 && tensor_given) {
+      const Eigen::Matrix3d r = n.body.cm.rotation.toRotationMatrix();
+      body_mass_[node] = {n.body.mass, n.body.cm.position, r * n.body.inertia * r.transpose()};
       body.add("inertial")
           .set("pos", n.body.cm.position)
           .set_quat("quat", n.body.cm.rotation)
@@ -312,8 +315,11 @@ class Emitter {
       meshes = meshes || !unit_density_properties(*g);
     }
     if (meshes) {
-      // MuJoCo computes mesh volumes exactly (exactmeshinertia); the mass goes on the geoms.
+      // MuJoCo computes mesh volumes exactly (exactmeshinertia); the mass goes on the geoms. For motor gains
+      // below, estimate the body as a sphere of radius 0.1 m.
       mass_on_geoms_[node] = n.body.mass;
+      const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
+      body_mass_[node] = {mass, Eigen::Vector3d::Zero(), 0.4 * mass * 0.01 * Eigen::Matrix3d::Identity()};
       return;
     }
     std::optional<MassProperties> p = combine(parts);
@@ -326,12 +332,14 @@ class Emitter {
           .set("pos", "0 0 0")
           .set("mass", mass)
           .set("diaginertia", Eigen::Vector3d::Constant(0.4 * mass * 0.01));
+      body_mass_[node] = {mass, Eigen::Vector3d::Zero(), 0.4 * mass * 0.01 * Eigen::Matrix3d::Identity()};
       return;
     }
     if (n.body.mass > 0) {  // the model's mass, distributed like the geometry
       p->inertia *= n.body.mass / p->mass;
       p->mass = n.body.mass;
     }
+    body_mass_[node] = *p;
     body.add("inertial")
         .set("pos", p->com)
         .set("mass", p->mass)
@@ -564,6 +572,11 @@ class Emitter {
     std::map<Element*, std::pair<double, double>> springs;  // sum k, sum k * rest
     std::map<Element*, double> dampings;
     for (const sn::Interaction1D& i : view_.interactions) {
+      const bool velocity = i.kind == K::LinearVelocityMotor || i.kind == K::RotationalVelocityMotor;
+      if (!velocity || i.mate < 0 || !tree_mates_.count(i.mate)) continue;
+      if (Element* joint = joint_for(i.mate, i.kind == K::RotationalVelocityMotor)) ++velocity_motors_[joint];
+    }
+    for (const sn::Interaction1D& i : view_.interactions) {
       if (i.mate < 0 || !tree_mates_.count(i.mate)) continue;  // loop mates warned above
       const bool rotational = i.kind == K::TorsionSpring || i.kind == K::RotationalRange ||
                               i.kind == K::RotationalVelocityMotor || i.kind == K::TorqueMotor;
@@ -605,7 +618,7 @@ class Emitter {
           // f = kv (ctrl - qdot); kv is bounded by the motor's gain and by what explicit Euler keeps stable.
           const double gain = real(i.object, "gain", 1e8);
           Element& a = actuators.add("velocity");
-          a.set("name", name(i.path)).set("joint", joint_name).set("kv", std::min(gain, kMaxVelocityGain));
+          a.set("name", name(i.path)).set("joint", joint_name).set("kv", velocity_gain(gain, *joint, i));
           effort_limits(a, i);
           actuator_ctrl_[i.object] = {static_cast<int>(actuator_count_++), real(i.object, "target_speed")};
           break;
@@ -665,6 +678,54 @@ class Emitter {
     if (const fe::Value* b = ev_.value(d, "damping_constant"); b && b->is_number()) return b->as_real();
     if (const fe::Value* t = ev_.value(d, "relaxation_time"); t && t->is_number()) return t->as_real() * k;
     return 2 * kTimestep * k;
+  }
+
+  // MuJoCo's velocity actuator pushes explicitly: stable under Euler only while kv h / I_eff < 2. Half of the
+  // limit keeps tracking fast (the velocity error halves every step) with margin.
+  double velocity_gain(double gain, Element& joint, const sn::Interaction1D& motor) {
+    const double inertia = effective_inertia(joint);
+    if (!(inertia > 0)) return gain;
+    // The limit holds for the sum of the gains on one joint: share it among its velocity motors.
+    const double stable = 0.5 * inertia / kTimestep / std::max(1, velocity_motors_[&joint]);
+    if (gain > stable) {
+      note_capped_gain(motor, gain, stable);
+      return stable;
+    }
+    return gain;
+  }
+  void note_capped_gain(const sn::Interaction1D& motor, double gain, double stable) {
+    warn(motor.where, "`" + motor.path + ".gain` " + number(gain) +
+                          " would make MuJoCo's explicit velocity motor " +
+                          "unstable; emitted kv = " + number(stable) +
+                          " (half the stability limit I/h, shared by the joint's velocity motors)");
+  }
+
+  // The inertia the joint drives at the initial pose: the subtree below it, about the joint axis (rotation)
+  // or its mass (translation).
+  double effective_inertia(Element& joint) {
+    const JointInfo& info = joint_info_.at(&joint);
+    const sn::Transform& child = snap_.node_world[info.node];
+    const Eigen::Vector3d axis = child.rotation * info.axis;
+    const Eigen::Vector3d point = child.rotation * info.pos + child.position;
+    double total = 0.0;
+    std::vector<int> todo{info.node};
+    while (!todo.empty()) {
+      const int b = todo.back();
+      todo.pop_back();
+      for (int c : tree_children_[b]) todo.push_back(c);
+      auto it = body_mass_.find(b);
+      if (it == body_mass_.end()) continue;
+      const MassProperties& p = it->second;
+      if (!info.rotational) {
+        total += p.mass;
+        continue;
+      }
+      const Eigen::Matrix3d r = snap_.node_world[b].rotation.toRotationMatrix();
+      const Eigen::Vector3d com = r * p.com + snap_.node_world[b].position;
+      total +=
+          axis.dot(r * p.inertia * r.transpose() * axis) + p.mass * (com - point).cross(axis).squaredNorm();
+    }
+    return total;
   }
 
   fe::ObjectId object(fe::ObjectId id, std::string_view attribute) {
@@ -796,7 +857,6 @@ class Emitter {
                kids.end());
   }
 
-  static constexpr double kMaxVelocityGain = 1000.0;
   static constexpr double kTimestep = 0.002;
 
   struct Adjacent {
@@ -819,6 +879,16 @@ class Emitter {
   std::map<int, Element*> body_element_;
   std::map<int, std::vector<Element*>> joint_of_mate_;
   std::map<int, double> mass_on_geoms_;
+  struct JointInfo {
+    int node;
+    Eigen::Vector3d pos;   // in the child body frame
+    Eigen::Vector3d axis;  // unit, in the child body frame
+    bool rotational;
+  };
+  std::map<Element*, JointInfo> joint_info_;
+  std::map<int, MassProperties> body_mass_;
+  std::map<int, std::vector<int>> tree_children_;
+  std::map<Element*, int> velocity_motors_;
   std::set<std::string> emitted_geoms_;
   std::map<fe::ObjectId, std::string> material_names_;
   std::unordered_map<fe::ObjectId, int> mate_index_;
