@@ -826,11 +826,24 @@ class Emitter {
     std::string out = "{\n  \"model\": " + fe::quoted(options_.model_name) + ",\n  \"signals\": [";
     bool first = true;
     for (const sn::Signal& s : view_.signals) {
-      std::string element = "none", target;
+      std::string element = "none", target, extra;
       if (s.input) {
+        auto ends_with = [&](std::string_view suffix) {
+          return s.type.size() >= suffix.size() &&
+                 s.type.compare(s.type.size() - suffix.size(), suffix.size(), suffix) == 0;
+        };
         if (auto it = actuator_ctrl_.find(s.source); it != actuator_ctrl_.end()) {
-          element = "ctrl";
-          target = name(view_path(s.source));
+          const std::string index = ", \"index\": " + std::to_string(it->second.first);
+          if (ends_with("Velocity1DInput") || ends_with("Torque1DInput") || ends_with("Force1DInput")) {
+            // MJCF has no initial control: the runtime sets ctrl[index] = initial before the first step.
+            element = "ctrl";
+            target = name(view_path(s.source));
+            extra = index + ", \"initial\": " + number(it->second.second);
+          } else if (ends_with("TorqueRangeInput") || ends_with("ForceRangeInput")) {
+            element = "forcerange";  // the runtime writes m->actuator_forcerange[2 index ..]
+            target = name(view_path(s.source));
+            extra = index;
+          }
         }
       } else if (auto it = signals_.find(s.object); it != signals_.end()) {
         element = it->second.first;
@@ -840,7 +853,7 @@ class Emitter {
       first = false;
       out += "    {\"path\": " + fe::quoted(s.path) + ", \"direction\": \"" + (s.input ? "input" : "output") +
              "\", \"type\": " + fe::quoted(s.type) + ", \"enabled\": " + (s.enabled ? "true" : "false") +
-             ", \"mujoco\": " + fe::quoted(element) + ", \"name\": " + fe::quoted(target) + "}";
+             ", \"mujoco\": " + fe::quoted(element) + ", \"name\": " + fe::quoted(target) + extra + "}";
     }
     return out + "\n  ]\n}\n";
   }

@@ -397,6 +397,30 @@ TEST_F(Mjcf, VelocityMotorIsStableAndTracks) {
   mj_deleteModel(m);
 }
 
+// The signal manifest maps a motor's target input to its actuator's ctrl (with the model's initial value,
+// which MJCF cannot hold), its range input to forcerange, and outputs to their sensors.
+TEST_F(Mjcf, ManifestMapsInputsAndOutputs) {
+  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/torque_range.openplx").string()))
+      << all_diags();
+  emit("torque_range");
+  accept_all_diags();
+  const std::string& json = emitted_.manifest_json;
+  EXPECT_NE(
+      json.find(
+          "{\"path\": \"pendulum.motor.torque_range_input\", \"direction\": \"input\", \"type\": "
+          "\"Physics.Signals.TorqueRangeInput\", \"enabled\": true, \"mujoco\": \"forcerange\", \"name\": "
+          "\"pendulum.motor\", \"index\": 0}"),
+      std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"mujoco\": \"ctrl\", \"name\": \"pendulum.motor\", \"index\": 0, \"initial\": "),
+            std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"path\": \"pendulum.motor.enable_interaction_input\""), std::string::npos);
+  EXPECT_EQ(json.find("\"enable_interaction_input\", \"direction\": \"input\", \"type\": "
+                      "\"Physics.Signals.EnableInteractionInput\", \"enabled\": true, \"mujoco\": \"ctrl\""),
+            std::string::npos);
+}
+
 TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
   std::string text =
       "Link is Physics3D.Bodies.RigidBody:\n"
