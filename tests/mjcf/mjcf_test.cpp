@@ -421,6 +421,51 @@ TEST_F(Mjcf, ManifestMapsInputsAndOutputs) {
             std::string::npos);
 }
 
+// The angle convention end to end: the joint reading is connectors[1]'s angle relative to connectors[0]'s,
+// whichever side the moving body holds, and a positive torque turns that angle up. A 1 kg box turning about
+// the vertical axis (no gravity torque) accelerates at tau / I: I = m (a^2 + b^2) / 12 = 1/6 kg m^2 for a
+// 1 m square, so after 0.5 s at 1 N m the angle is 0.5 * 6 * 0.25 = 0.75 rad (Euler's error is O(h)).
+TEST_F(Mjcf, TorqueMotorTurnsTheOpenplxAngleUpOnEitherSide) {
+  for (const bool body_first : {false, true}) {
+    SCOPED_TRACE(body_first ? "body holds connectors[0]" : "body holds connectors[1]");
+    const std::string connectors = body_first ? "[box.axle, base]" : "[base, box.axle]";
+    ASSERT_TRUE(
+        load("Box is Physics3D.Bodies.RigidBody:\n"
+             "    inertia.mass: 1\n"
+             "    geometry is Physics3D.Geometries.Box:\n"
+             "        size: {1, 1, 0.1}\n"
+             "    axle is Physics3D.Interactions.MateConnector:\n"
+             "        main_axis: Math.Vec3.Z_AXIS()\n"
+             "        normal: Math.Vec3.X_AXIS()\n"
+             "Scene is Physics3D.System:\n"
+             "    base is Physics3D.Interactions.MateConnector:\n"
+             "        main_axis: Math.Vec3.Z_AXIS()\n"
+             "        normal: Math.Vec3.X_AXIS()\n"
+             "    box is Box\n"
+             "    hinge is Physics3D.Interactions.Hinge:\n"
+             "        connectors: " +
+             connectors +
+             "\n"
+             "    motor is Physics3D.Interactions.TorqueMotor:\n"
+             "        connectors: hinge.connectors\n"))
+        << all_diags();
+    mjModel* m = load_mujoco(emit(body_first ? "torque_b" : "torque_a"));
+    ASSERT_NE(m, nullptr);
+    mjData* d = mj_makeData(m);
+    d->ctrl[0] = 1.0;
+    while (d->time < 0.5 - 1e-9) mj_step(m, d);
+    EXPECT_NEAR(d->qpos[0], 0.75, 0.75 * 0.01);
+    mj_forward(m, d);  // body frames for the current qpos (mj_step leaves those of the step's start)
+    // The box's own turn about world z: +angle when it holds connectors[1], -angle when it holds
+    // connectors[0].
+    const int box = mj_name2id(m, mjOBJ_BODY, "box");
+    const double turn = std::atan2(d->xmat[9 * box + 3], d->xmat[9 * box + 0]);
+    EXPECT_NEAR(turn, body_first ? -d->qpos[0] : d->qpos[0], 1e-9);
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+}
+
 TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
   std::string text =
       "Link is Physics3D.Bodies.RigidBody:\n"
