@@ -152,25 +152,55 @@ std::vector<Evaluator::Level> Evaluator::levels_of(ObjectId id) const {
   return levels;
 }
 
-Binding Evaluator::find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
-                                bool include_declarations) {
-  // Assignments anywhere beat declaration defaults; among them the level nearest the root, then the most
-  // derived model of that level's type.
-  const Object& target = graph_.at(levels.back().object);
-  for (int pass = 0; pass < (include_declarations ? 2 : 1); ++pass) {
-    for (uint32_t i = 0; i < levels.size(); ++i) {
-      const Object& level = graph_.at(levels[i].object);
-      for (ModelInfo* model : level.type->linearization) {
-        auto it = model->by_parent.find(levels[i].rel);
-        if (it == model->by_parent.end()) continue;
+Evaluator::Targeting Evaluator::collect_targeting(const std::vector<Level>& levels) const {
+  // Every entry aimed at the instance's own attributes, in priority order: the level nearest the root
+  // first, then the most derived model of that level's type. Built once per instance, so each attribute is
+  // a hash lookup instead of a walk over all levels.
+  Targeting t;
+  for (uint32_t i = 0; i < levels.size(); ++i) {
+    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
+      if (auto it = model->by_parent.find(levels[i].rel); it != model->by_parent.end()) {
         for (uint32_t index : it->second) {
           const Entry& e = model->entries[index];
-          if (e.path.back() != slot && !is_renamed_to(target, e.path.back(), slot)) continue;
-          const bool match =
-              pass == 0 ? e.kind == kind : (e.kind == Entry::Kind::Declare && e.value.has_value());
-          if (match) return Binding{&e, model, levels[i].object, i};
+          t.by_name[e.path.back()].push_back(static_cast<uint32_t>(t.ordered.size()));
+          t.ordered.push_back({&e, model, levels[i].object, i});
         }
       }
+      if (auto it = model->children_below.find(levels[i].rel); it != model->children_below.end()) {
+        for (const auto& [name, assigned] : it->second) t.below[name] = t.below[name] || assigned;
+      }
+      if (auto it = model->annotations_below.find(levels[i].rel); it != model->annotations_below.end()) {
+        for (uint32_t index : it->second) t.annotations.emplace_back(&model->entries[index], model);
+      }
+    }
+  }
+  return t;
+}
+
+std::vector<uint32_t> Evaluator::candidates(const Targeting& t, const Object& object, std::string_view slot) {
+  // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
+  std::vector<uint32_t> mine;
+  if (auto it = t.by_name.find(slot); it != t.by_name.end()) mine = it->second;
+  if (std::optional<std::string_view> legacy = legacy_attribute(slot)) {
+    auto it = t.by_name.find(*legacy);
+    if (it != t.by_name.end() && is_renamed_to(object, *legacy, slot)) {
+      mine.insert(mine.end(), it->second.begin(), it->second.end());
+      std::sort(mine.begin(), mine.end());  // back in priority order
+    }
+  }
+  return mine;
+}
+
+Binding Evaluator::pick_value(const Targeting& t, const std::vector<uint32_t>& candidates,
+                              bool include_declarations) {
+  // Assignments anywhere beat declaration defaults.
+  for (uint32_t k : candidates) {
+    if (t.ordered[k].entry->kind == Entry::Kind::Value) return t.ordered[k];
+  }
+  if (include_declarations) {
+    for (uint32_t k : candidates) {
+      const Entry& e = *t.ordered[k].entry;
+      if (e.kind == Entry::Kind::Declare && e.value.has_value()) return t.ordered[k];
     }
   }
   return {};
@@ -244,34 +274,8 @@ ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name
 void Evaluator::build_slots(ObjectId id) {
   const std::vector<Level> levels = levels_of(id);
   const uint32_t own_level = static_cast<uint32_t>(levels.size() - 1);
-  // Every entry aimed at this instance's own attributes, in priority order: the level nearest the root
-  // first, then the most derived model of that level's type. Built once, so each attribute below is a
-  // hash lookup instead of a walk over all levels.
-  std::vector<Binding> ordered;
-  std::unordered_map<std::string_view, std::vector<uint32_t>> by_name;
-  std::unordered_map<std::string_view, bool> below;  // attributes with entries on their parts: assigned?
-  std::vector<std::pair<const Entry*, ModelInfo*>> annotations;
-  for (uint32_t i = 0; i < levels.size(); ++i) {
-    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
-      if (auto it = model->by_parent.find(levels[i].rel); it != model->by_parent.end()) {
-        for (uint32_t index : it->second) {
-          const Entry& e = model->entries[index];
-          by_name[e.path.back()].push_back(static_cast<uint32_t>(ordered.size()));
-          ordered.push_back({&e, model, levels[i].object, i});
-        }
-      }
-      if (auto it = model->children_below.find(levels[i].rel); it != model->children_below.end()) {
-        for (const auto& [name, assigned] : it->second) below[name] = below[name] || assigned;
-      }
-      if (auto it = model->annotations_below.find(levels[i].rel); it != model->annotations_below.end()) {
-        for (uint32_t index : it->second) annotations.emplace_back(&model->entries[index], model);
-      }
-    }
-  }
-  auto candidates = [&](std::string_view name) -> const std::vector<uint32_t>* {
-    auto it = by_name.find(name);
-    return it == by_name.end() ? nullptr : &it->second;
-  };
+  const Targeting targeting = collect_targeting(levels);
+  const std::vector<Binding>& ordered = targeting.ordered;
 
   // `with` lines in a nested block add traits to this one instance.
   std::vector<ModelInfo*> extra_traits;
@@ -337,14 +341,7 @@ void Evaluator::build_slots(ObjectId id) {
   // Types, `becomes`, bindings and annotations.
   for (Slot& slot : obj.slots) {
     // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
-    std::vector<uint32_t> mine;
-    if (const auto* list = candidates(slot.name)) mine = *list;
-    if (std::optional<std::string_view> legacy = legacy_attribute(slot.name)) {
-      if (const auto* list = candidates(*legacy); list && is_renamed_to(obj, *legacy, slot.name)) {
-        mine.insert(mine.end(), list->begin(), list->end());
-      }
-    }
-    std::sort(mine.begin(), mine.end());  // back in priority order
+    const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name);
 
     slot.declared_type = declared_type(*slot.declaration, slot.declared_in);
     slot.type = slot.declared_type;
@@ -380,30 +377,14 @@ void Evaluator::build_slots(ObjectId id) {
       }
       slot.type = narrowed;
     }
-    // Assignments anywhere beat declaration defaults.
-    slot.binding = {};
-    for (uint32_t k : mine) {
-      if (ordered[k].entry->kind == Entry::Kind::Value) {
-        slot.binding = ordered[k];
-        break;
-      }
-    }
-    if (!slot.binding.entry) {
-      for (uint32_t k : mine) {
-        const Entry& e = *ordered[k].entry;
-        if (e.kind == Entry::Kind::Declare && e.value.has_value()) {
-          slot.binding = ordered[k];
-          break;
-        }
-      }
-    }
-    auto part = below.find(slot.name);
-    slot.entries_below = part != below.end();
+    slot.binding = pick_value(targeting, mine, true);
+    auto part = targeting.below.find(slot.name);
+    slot.entries_below = part != targeting.below.end();
     slot.explicit_value = (slot.binding.entry && slot.binding.entry->kind == Entry::Kind::Value) ||
                           (slot.entries_below && part->second);
   }
   // Annotations: the entry nearest the root (then the most derived) wins, so apply in reverse.
-  for (auto it = annotations.rbegin(); it != annotations.rend(); ++it) {
+  for (auto it = targeting.annotations.rbegin(); it != targeting.annotations.rend(); ++it) {
     const Entry& e = *it->first;
     auto slot = obj.index.find(e.path[e.path.size() - 2]);
     if (slot != obj.index.end()) {
@@ -463,11 +444,12 @@ void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, u
   }
   // The value came with its fields set at `level`; assignments to its parts from that level or nearer the
   // root still win (`position: {0, 0, 1}` in a body, `body.position.z: 2` in its owner).
-  std::vector<Level> levels = levels_of(child);
+  const Targeting targeting = collect_targeting(levels_of(child));
   Object& obj = graph_.at(child);
   for (uint32_t i = 0; i < obj.slots.size(); ++i) {
     Slot& slot = obj.slots[i];
-    Binding assigned = find_binding(levels, slot.name, Entry::Kind::Value, false);
+    const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name);
+    Binding assigned = pick_value(targeting, mine, false);
     if (slot.preset) {
       if (assigned.entry && assigned.level <= level) {
         slot.binding = assigned;
@@ -478,7 +460,7 @@ void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, u
         adopt(slot.value.object, child, std::string(slot.name), level);
       }
     } else if (slot.state == Slot::State::Pending) {
-      slot.binding = find_binding(levels, slot.name, Entry::Kind::Value, true);
+      slot.binding = pick_value(targeting, mine, true);
     }
     slot.explicit_value = slot.explicit_value || assigned.entry != nullptr;
   }

@@ -109,8 +109,17 @@ class Evaluator {
   ObjectId new_object(ModelInfo* type, ObjectId owner, std::string name);
   void build_slots(ObjectId id);
   std::vector<Level> levels_of(ObjectId id) const;
-  Binding find_binding(const std::vector<Level>& levels, std::string_view slot, Entry::Kind kind,
-                       bool include_declarations);
+  // The entries aimed at one instance's attributes (see collect_targeting).
+  struct Targeting {
+    std::vector<Binding> ordered;  // priority order
+    std::unordered_map<std::string_view, std::vector<uint32_t>> by_name;
+    std::unordered_map<std::string_view, bool> below;  // attributes with entries on their parts: assigned?
+    std::vector<std::pair<const Entry*, ModelInfo*>> annotations;
+  };
+  Targeting collect_targeting(const std::vector<Level>& levels) const;
+  static std::vector<uint32_t> candidates(const Targeting& t, const Object& object, std::string_view slot);
+  static Binding pick_value(const Targeting& t, const std::vector<uint32_t>& candidates,
+                            bool include_declarations);
   const Entry* entry_below(ObjectId id, std::string_view slot) const;
   Type declared_type(const Entry& declaration, ModelInfo* model);
   Type merged_becomes_type(const std::vector<Binding>& all);

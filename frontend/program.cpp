@@ -234,11 +234,10 @@ void Program::process_imports(DocumentInfo* doc) {
     // scope of its own, and its one model becomes visible under the alias.
     FileId id = sources_.add("<import " + path + ">", *source);
     Namespace* ns = new_namespace("", nullptr, "", nullptr);
-    DocumentInfo* generated = load_document(id, ns, nullptr);
+    load_document(id, ns, nullptr);
     if (auto it = ns->symbols.find(alias); it != ns->symbols.end() && it->second.model) {
       doc->import_models[alias] = it->second.model;
     }
-    (void)generated;
   }
 }
 

@@ -35,6 +35,10 @@ class Mjcf : public openplx::testing::EvalTest {
     std::ofstream(path) << xml_;
     return path;
   }
+  // Loads ../shared/corpus/agxunity/<file> (root `model`, else the file's last).
+  bool load_corpus(const std::string& file, const char* model = nullptr) {
+    return load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity" / file).string(), model);
+  }
   mjModel* load_mujoco(const std::string& path) {
     char error[1000] = "";
     mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
@@ -74,7 +78,7 @@ TEST_F(Mjcf, EveryCorpusModelLoadsInMuJoCoWhereSnapPutIt) {
 }
 
 TEST_F(Mjcf, UnsupportedModelsGetOneWarningEach) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/shovel.openplx").string())) << all_diags();
+  ASSERT_TRUE(load_corpus("shovel.openplx")) << all_diags();
   emit("shovel");
   EXPECT_EQ(expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`shovel.shovel` is a Terrain.Shovel"),
             "`shovel.shovel` is a Terrain.Shovel, which has no MuJoCo 2.2.2 counterpart; it and its parts "
@@ -148,8 +152,7 @@ TEST_F(Mjcf, PendulumSwingsWithThePhysicalPeriod) {
 // LinearSpringTest (corpus README): a 10 kg rod on a prismatic spring; after 2 s it rests at z = -0.5.
 // Tolerance 1 mm (AGXUnity's): the static deflection m g / k = 98.1 N / 1e6 N/m is 0.1 mm.
 TEST_F(Mjcf, LinearSpringTestRodComesToRest) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/LinearSpringTest.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("LinearSpringTest.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("spring"));
   expect_diag_containing(fe::DiagCode::MjcfUnmapped, "has no force limit");
   accept_all_diags();
@@ -168,8 +171,7 @@ TEST_F(Mjcf, LinearSpringTestRodComesToRest) {
 // -0.5 plus range end -0.5). MuJoCo's limit is soft: with the default solref/solimp the 10 kg rod sinks
 // m g / k_limit ≈ 0.4 mm into it, inside AGXUnity's 1 mm.
 TEST_F(Mjcf, LinearRangeTestRodRestsOnTheRangeEnd) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/LinearRangeTest.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("LinearRangeTest.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("range"));
   ASSERT_NE(m, nullptr);
   mjData* d = mj_makeData(m);
@@ -184,8 +186,7 @@ TEST_F(Mjcf, LinearRangeTestRodRestsOnTheRangeEnd) {
 // multi_interaction (corpus README): all seven interactions of each mate are in the MJCF: two actuators, the
 // two ranges intersected into the joint's range, the two springs added into its stiffness.
 TEST_F(Mjcf, MultiInteractionExpressesAllSevenPerMate) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/multi_interaction.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("multi_interaction.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("multi"));
   ASSERT_NE(m, nullptr);
   ASSERT_EQ(m->njnt, 2);
@@ -207,8 +208,7 @@ TEST_F(Mjcf, MultiInteractionExpressesAllSevenPerMate) {
 // material_scene (corpus README): every box keeps its material and each box-ground material pair has a
 // contact model: one <pair> with that model's friction.
 TEST_F(Mjcf, MaterialSceneHasAContactPairPerMaterialPair) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/material_scene.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("material_scene.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("materials"));
   ASSERT_NE(m, nullptr);
   ASSERT_EQ(m->npair, 3);
@@ -350,8 +350,7 @@ TEST_F(Mjcf, LoopClosureOnASystemConnectorStartsSatisfied) {
 // visual_mat (corpus README): the visual material keeps its look as far as MJCF can: colour, 1 - roughness as
 // shininess (0.8), metallic as reflectance (0.4).
 TEST_F(Mjcf, VisualMaterialKeepsColourRoughnessAndMetallic) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/visual_mat.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("visual_mat.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("visual_mat"));
   ASSERT_NE(m, nullptr);
   ASSERT_EQ(m->nmat, 1);
@@ -364,8 +363,7 @@ TEST_F(Mjcf, VisualMaterialKeepsColourRoughnessAndMetallic) {
 
 // visual_mesh_import (corpus README): the imported OBJ becomes a visual mesh: drawn, never colliding.
 TEST_F(Mjcf, ImportedObjBecomesAVisualMesh) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/visual_mesh_import.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("visual_mesh_import.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("visual_mesh"));
   ASSERT_NE(m, nullptr);
   ASSERT_EQ(m->nmesh, 1);
@@ -381,8 +379,7 @@ TEST_F(Mjcf, ImportedObjBecomesAVisualMesh) {
 // take (kv h / I < 2). The emitted gain is capped at half that limit, so the hinge reaches the commanded
 // 1 rad/s well within the 0.2 s of the corpus README and stays stable.
 TEST_F(Mjcf, VelocityMotorIsStableAndTracks) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/signal_test.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("signal_test.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("signal"));
   ASSERT_NE(m, nullptr);
   expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`motor.gain` 1e+08");
@@ -400,8 +397,7 @@ TEST_F(Mjcf, VelocityMotorIsStableAndTracks) {
 // The signal manifest maps a motor's target input to its actuator's ctrl (with the model's initial value,
 // which MJCF cannot hold), its range input to forcerange, and outputs to their sensors.
 TEST_F(Mjcf, ManifestMapsInputsAndOutputs) {
-  ASSERT_TRUE(load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity/torque_range.openplx").string()))
-      << all_diags();
+  ASSERT_TRUE(load_corpus("torque_range.openplx")) << all_diags();
   emit("torque_range");
   accept_all_diags();
   const std::string& json = emitted_.manifest_json;
