@@ -13,6 +13,7 @@
 
 #include "frontend/diagnostics.h"
 #include "frontend/evaluator.h"
+#include "mjcf_emitter/signal_binding.h"
 #include "mjcf_emitter/xml.h"
 #include "snap/snap.h"
 
@@ -26,7 +27,8 @@ struct EmitOptions {
 
 struct Emitted {
   Element document{"mujoco"};
-  std::string manifest_json;  // the signal manifest: every OpenPLX input/output and its MuJoCo element
+  std::vector<SignalBinding> signals;  // every OpenPLX input/output and how MuJoCo reaches it
+  std::string manifest_json;           // the same, as the signal manifest file
 };
 
 // MuJoCo 2.2.2's XML reader stops near 100 nested elements; deeper body chains are an error here.

@@ -1,0 +1,75 @@
+// How each OpenPLX signal is reached in the emitted MuJoCo model. This is the contract between the emitter,
+// which fills it (and writes it as the manifest OUT.signals.json), and the runtime, which reads and writes
+// mjModel/mjData through it. Every Input/Output of the tree gets exactly one binding, mapped or not.
+//
+// Units are SI. Vectors are in world axes unless a quantity says otherwise. A binding names its MuJoCo
+// element by name (prefix included); the runtime resolves names to ids with mj_name2id once, at load.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace openplx::mjcf {
+
+enum class SignalValue { Real, Bool, Int, Vec2, Vec3 };
+
+// The MuJoCo element type a binding's names refer to (an mjtObj).
+enum class MjObject { None, Actuator, Joint, Body, Site, Equality };
+
+// What the runtime does for a signal: inputs write, outputs read.
+enum class Quantity {
+  None,  // not mapped; `reason` says why (enabled outputs are also warned about at emission)
+  // --- inputs (some are readable as outputs too, e.g. a motor's target output reads Ctrl)
+  Ctrl,                 // Actuator: d->ctrl[id]; `initial` is the control before the first step
+  ForceRange,           // Actuator: m->actuator_forcerange[2id], [2id+1] = (min, max)   (Vec2, also readable)
+  EqualityActive,       // Equality: m->eq_active[id] for every name (Bool, also readable)
+  KinematicLinearVelocity,   // Body (mocap): world linear velocity; the runtime integrates d->mocap_pos
+  KinematicAngularVelocity,  // Body (mocap): world angular velocity; the runtime integrates d->mocap_quat
+  FreeLinearVelocity,        // Joint (free): sets the world linear velocity of a free body (qvel[0..2])
+  FreeAngularVelocity,       // Joint (free): sets the world angular velocity (MuJoCo keeps it in body axes)
+  // --- outputs
+  JointPosition,        // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
+  JointVelocity,        // Joint: d->qvel[jnt_dofadr[id]], times `sign`
+  ActuatorForce,        // Actuator: d->actuator_force[id] (N or N·m on the joint)
+  BodyPosition,         // Body: d->xpos (the body frame's origin, world)
+  BodyRPY,              // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
+  BodyLinearVelocity,   // Body: the body frame origin's world linear velocity
+  BodyAngularVelocity,  // Body: world angular velocity
+  BodyLinearAcceleration,  // Body: world linear acceleration of the body frame origin
+  SitePosition,         // Site (a mate connector): d->site_xpos
+  SiteRPY,              // Site: orientation as roll, pitch, yaw
+  SiteLinearVelocity,   // Site: world linear velocity of the site origin
+  SiteAngularVelocity,  // Site: world angular velocity
+  MateForce,            // Site on the child side of a tree mate: constraint + joint force the parent exerts on
+                        // the child at the connector, world axes, times `sign` (see the emitter for the side)
+  MateTorque,           // the same, torque about the connector origin
+  Constant,             // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
+};
+
+struct SignalBinding {
+  std::string path;  // OpenPLX path relative to the root model, e.g. "pendulum.motor.torque_output"
+  bool input = false;
+  std::string type;  // the signal's OpenPLX model, e.g. "Physics.Signals.AngleOutput"
+  SignalValue value = SignalValue::Real;
+  std::string unit;  // "rad", "rad/s", "m", "m/s", "m/s^2", "N", "N*m", "" (dimensionless or Bool)
+  bool enabled = true;
+  Quantity quantity = Quantity::None;
+  MjObject object = MjObject::None;
+  std::vector<std::string> names;  // MuJoCo names of `object` (usually one; a hinge loop closure has two)
+  std::string sensor;              // a MuJoCo sensor carrying the same value, "" when none
+  double sign = 1.0;               // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's
+  double initial = 0.0;            // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
+  std::string reason;              // None: why nothing maps
+};
+
+std::string_view to_string(SignalValue value);
+std::string_view to_string(MjObject object);
+std::string_view to_string(Quantity quantity);
+
+// The manifest: {"model": ..., "signals": [{"path", "direction", "type", "value", "unit", "enabled",
+// "quantity", "object", "names", "sensor", "sign", "initial", "reason"}]} with keys in that order, one
+// signal per line, deterministic.
+std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings);
+
+}  // namespace openplx::mjcf
