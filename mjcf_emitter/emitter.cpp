@@ -15,6 +15,8 @@ namespace {
 
 namespace fe = openplx::frontend;
 namespace sn = openplx::snap;
+using mjcf::MjObject;
+using mjcf::Quantity;
 using natives::affine_compose;
 using natives::affine_inverse;
 
@@ -54,15 +56,16 @@ class Emitter {
     assets_ = &root.add("asset");
     emit_visual_materials();
     Element& world = root.add("worldbody");
+    world_ = &world;
     emit_world_geoms(world);
     emit_bodies(world);
     emit_loop_closures(root);
     emit_contact_pairs(root);
     emit_actuators(root);
-    emit_sensors(root);
+    bind_signals(root, out.signals);
     if (assets_->children().empty()) drop_empty(root, "asset");
     for (const char* section : {"equality", "contact", "actuator", "sensor"}) drop_empty(root, section);
-    out.manifest_json = manifest();
+    out.manifest_json = manifest_json(options_.model_name, out.signals);
     return out;
   }
 
@@ -234,6 +237,11 @@ class Emitter {
     Element& body = parent.add("body");
     body.set("name", name(n.path)).set("pos", local.position).set_quat("quat", local.rotation);
     body_element_[node] = &body;
+    if (is_static(node)) {  // kinematic: the runtime moves it by its velocity inputs
+      body.set("mocap", "true");
+      mocap_.insert(node);
+    }
+    if (edges_[node].mate >= 0) child_of_mate_[edges_[node].mate] = node;
     if (free_roots_.count(node)) body.add("freejoint").set("name", name(n.path));
     if (edges_[node].mate >= 0) emit_joints(body, node, edges_[node].mate);
     emit_inertial(body, node);
@@ -485,6 +493,7 @@ class Emitter {
           if (e.b >= 0) weld.set("body2", b);
           weld.set("anchor",
                    frame1.position);  // where the error is measured: the weld point, in body2's frame
+          equalities_of_mate_[e.mate].push_back(*weld.get("name"));
           break;
         }
         case sn::MateType::Ball:
@@ -499,6 +508,7 @@ class Emitter {
             connect.set("name", name(mate.path) + (count == 1 ? "" : (k == 0 ? ".a" : ".b"))).set("body1", a);
             if (e.b >= 0) connect.set("body2", b);
             connect.set("anchor", point);
+            equalities_of_mate_[e.mate].push_back(*connect.get("name"));
           }
           break;
         }
@@ -591,6 +601,7 @@ class Emitter {
         case K::LinearRange:
         case K::RotationalRange: {
           const double lo = real(i.object, "start"), hi = real(i.object, "end");
+          range_joints_[i.object] = joint_name;
           auto [it, fresh] = ranges.try_emplace(joint, lo, hi);
           if (!fresh) it->second = {std::max(it->second.first, lo), std::min(it->second.second, hi)};
           break;
@@ -604,6 +615,7 @@ class Emitter {
           auto& [sum_k, sum_kr] = springs[joint];
           sum_k += k;
           sum_kr += k * rest;
+          springs_[i.object] = {joint_name, k, rest, 0.0};
           dampings[joint] += spring_damping(i, k);
           if (std::isfinite(real(i.object, "min_effort", -INFINITY)) ||
               std::isfinite(real(i.object, "max_effort", INFINITY))) {
@@ -648,7 +660,11 @@ class Emitter {
     }
     for (auto& [joint, spring] : springs) {
       joint->set("stiffness", spring.first);
-      if (spring.first > 0 && spring.second != 0) joint->set("springref", spring.second / spring.first);
+      const double rest = spring.first > 0 ? spring.second / spring.first : 0.0;
+      if (rest != 0) joint->set("springref", rest);
+      for (auto& [object, info] : springs_) {
+        if (info.joint == *joint->get("name")) info.joint_rest = rest;
+      }
       if (dampings[joint] > 0) joint->set("damping", dampings[joint]);
     }
   }
@@ -735,11 +751,11 @@ class Emitter {
 
   void effort_limits(Element& actuator, const sn::Interaction1D& i) {
     const double lo = real(i.object, "min_effort", -INFINITY), hi = real(i.object, "max_effort", INFINITY);
-    if (std::isfinite(lo) || std::isfinite(hi)) {
-      actuator.set("forcelimited", "true")
-          .set("forcerange",
-               number(std::isfinite(lo) ? lo : -1e10) + " " + number(std::isfinite(hi) ? hi : 1e10));
-    }
+    // Always limited (±1e10 when the model gives no limit): every motor model has a range input, and the
+    // runtime can tighten only a limited actuator.
+    actuator.set("forcelimited", "true")
+        .set("forcerange",
+             number(std::isfinite(lo) ? lo : -1e10) + " " + number(std::isfinite(hi) ? hi : 1e10));
   }
 
   Element* joint_for(int mate, bool rotational) {
@@ -752,53 +768,267 @@ class Emitter {
     return nullptr;
   }
 
-  // ----------------------------------------------------------------------------------------- sensors
+  // ------------------------------------------------------------------------------ signals and sensors
 
-  void emit_sensors(Element& root) {
-    Element& sensors = root.add("sensor");
+  // One binding per OpenPLX signal (signal_binding.h), and a MuJoCo sensor for every enabled output that
+  // has one. Outputs without a sensor (controls, ranges, constants) are computed by the runtime.
+  void bind_signals(Element& root, std::vector<SignalBinding>& out) {
+    sensors_ = &root.add("sensor");
     for (const sn::Signal& s : view_.signals) {
-      if (s.input || !s.enabled || s.source == fe::kNoObject) continue;
-      const std::string& type = s.type;
-      auto ends_with = [&](std::string_view suffix) {
-        return type.size() >= suffix.size() &&
-               type.compare(type.size() - suffix.size(), suffix.size(), suffix) == 0;
-      };
-      const int mate = mate_of(s.source);
-      const int body = node_of(s.source);
-      Element* joint = nullptr;
-      if (mate >= 0)
-        joint = joint_for(mate, !ends_with("Position1DOutput") && !ends_with("LinearVelocity1DOutput"));
-      std::string element;
-      if (joint && (ends_with(".AngleOutput") || ends_with("Position1DOutput"))) {
-        element = "jointpos";
-      } else if (joint && (ends_with("AngularVelocity1DOutput") || ends_with("LinearVelocity1DOutput"))) {
-        element = "jointvel";
-      } else if (body >= 0 && ends_with("Position3DOutput")) {
-        element = "framepos";
-      } else if (body >= 0 && ends_with("RPYOutput")) {
-        element = "framequat";  // the runtime turns it into roll-pitch-yaw
-      } else if (body >= 0 && ends_with("LinearVelocity3DOutput")) {
-        element = "framelinvel";
-      } else if (body >= 0 && ends_with("AngularVelocity3DOutput")) {
-        element = "frameangvel";
-      } else if (actuator_ctrl_.count(s.source) &&
-                 (ends_with("Torque1DOutput") || ends_with("Force1DOutput"))) {
-        element = "actuatorfrc";
-      } else {
-        warn(s.where, "output `" + s.path + "` (" + type + ") has no MuJoCo sensor yet; it was left out");
-        continue;
+      SignalBinding b = bind(s);
+      if (!b.input && b.enabled && b.quantity == Quantity::None) {
+        warn(s.where, "output `" + s.path + "` (" + s.type + ") has no MuJoCo counterpart: " + b.reason +
+                          "; it was left out");
       }
-      Element& sensor = sensors.add(element);
-      sensor.set("name", name(s.path));
-      if (element == "jointpos" || element == "jointvel") {
-        sensor.set("joint", *joint->get("name"));
-      } else if (element == "actuatorfrc") {
-        sensor.set("actuator", name(view_path(s.source)));
-      } else {
-        sensor.set("objtype", "xbody").set("objname", name(view_.nodes[body].path));
-      }
-      signals_[s.object] = {element, name(s.path)};
+      if (!b.input && b.enabled) add_sensor(b);
+      out.push_back(std::move(b));
     }
+  }
+
+  SignalBinding bind(const sn::Signal& s) {
+    SignalBinding b;
+    b.path = s.path;
+    b.input = s.input;
+    b.type = s.type;
+    b.enabled = s.enabled;
+    const SignalKind kind = signal_kind(s.type);
+    b.value = kind.value;
+    b.unit = kind.unit;
+    const std::string_view stem = signal_stem(s.type);
+    if (s.source == fe::kNoObject) return unmapped(std::move(b), "it has no source");
+    if (const int i = index_of(interaction_index_, s.source, view_.interactions); i >= 0)
+      return bind_interaction(std::move(b), stem, view_.interactions[i]);
+    if (const int m = mate_of(s.source); m >= 0) return bind_mate(std::move(b), stem, m);
+    if (const int n = node_of(s.source); n >= 0) return bind_body(std::move(b), stem, n);
+    if (const int c = index_of(connector_index_, s.source, view_.connectors); c >= 0)
+      return bind_connector(std::move(b), stem, c);
+    return unmapped(std::move(b), "its source `" + view_path(s.source) + "` has no MuJoCo element");
+  }
+
+  static SignalBinding unmapped(SignalBinding b, std::string reason) {
+    b.quantity = Quantity::None;
+    b.reason = std::move(reason);
+    return b;
+  }
+  static SignalBinding mapped(SignalBinding b, Quantity quantity, MjObject object, std::string element) {
+    b.quantity = quantity;
+    b.object = object;
+    b.names = {std::move(element)};
+    return b;
+  }
+  static bool any_of(std::string_view stem, std::initializer_list<std::string_view> stems) {
+    return std::find(stems.begin(), stems.end(), stem) != stems.end();
+  }
+
+  SignalBinding bind_interaction(SignalBinding b, std::string_view stem, const sn::Interaction1D& i) {
+    if (auto a = actuator_ctrl_.find(i.object); a != actuator_ctrl_.end()) {  // a motor
+      const std::string actuator = name(i.path);
+      if (any_of(stem, {"TorqueRange", "ForceRange"}))
+        return mapped(std::move(b), Quantity::ForceRange, MjObject::Actuator, actuator);
+      const bool effort = any_of(stem, {"Torque1D", "Force1D"});
+      const bool target = b.input || !effort;  // an effort motor's input, a velocity motor's target
+      if (effort && !b.input)
+        return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, actuator);
+      if (target && any_of(stem, {"Torque1D", "Force1D", "AngularVelocity1D", "LinearVelocity1D"})) {
+        b.initial = a->second.second;
+        return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, actuator);
+      }
+    }
+    if (auto sp = springs_.find(i.object); sp != springs_.end()) {
+      const SpringInfo& spring = sp->second;
+      if (any_of(stem, {"Angle", "Position1D"})) {
+        b.initial = spring.joint_rest;
+        return mapped(std::move(b), Quantity::SpringRest, MjObject::Joint, spring.joint);
+      }
+      if (!b.input && any_of(stem, {"Torque1D", "Force1D"})) {
+        b.gain = -spring.stiffness;
+        b.offset = spring.rest;
+        return mapped(std::move(b), Quantity::SpringForce, MjObject::Joint, spring.joint);
+      }
+    }
+    if (auto r = range_joints_.find(i.object); r != range_joints_.end() && !b.input) {
+      if (any_of(stem, {"Angle", "Position1D"}))
+        return mapped(std::move(b), Quantity::JointPosition, MjObject::Joint, r->second);
+      if (any_of(stem, {"Torque1D", "Force1D"}))
+        return mapped(std::move(b), Quantity::JointLimitForce, MjObject::Joint, r->second);
+    }
+    return unmapped(std::move(b), "`" + i.path + "` has no MuJoCo element that carries it");
+  }
+
+  SignalBinding bind_mate(SignalBinding b, std::string_view stem, int m) {
+    const sn::Mate& mate = view_.mates[m];
+    const bool tree = tree_mates_.count(m) > 0;
+    if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {
+      if (auto e = equalities_of_mate_.find(m); e != equalities_of_mate_.end()) {
+        b = mapped(std::move(b), Quantity::EqualityActive, MjObject::Equality, "");
+        b.names = e->second;
+        return b;
+      }
+      if (!tree) return unmapped(std::move(b), "`" + mate.path + "` was left out of the MJCF");
+      if (b.input) {
+        return unmapped(std::move(b),
+                        "`" + mate.path + "` is a joint of MuJoCo's body tree, which cannot be switched off");
+      }
+      b.quantity = Quantity::Constant;
+      b.initial = 1.0;
+      return b;
+    }
+    if (!tree) {
+      return unmapped(std::move(b), "`" + mate.path +
+                                        "` closes a kinematic loop as an equality constraint, which has no "
+                                        "joint coordinate or force sensor");
+    }
+    if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D", "Position1D", "LinearVelocity1D"})) {
+      const bool rotational = any_of(stem, {"Angle", "AngularVelocity1D"});
+      Element* joint = joint_for(m, rotational);
+      if (!joint) {
+        return unmapped(std::move(b), "`" + mate.path + "` has no " + (rotational ? "rotational" : "linear") +
+                                          " joint coordinate");
+      }
+      const bool position = any_of(stem, {"Angle", "Position1D"});
+      return mapped(std::move(b), position ? Quantity::JointPosition : Quantity::JointVelocity,
+                    MjObject::Joint, *joint->get("name"));
+    }
+    if (!b.input && any_of(stem, {"Force3D", "Torque3D"})) {
+      auto found = child_of_mate_.find(m);
+      if (found == child_of_mate_.end()) return unmapped(std::move(b), "`" + mate.path + "` was not emitted");
+      const int child = found->second;
+      const int side = vertex_of_connector(mate.connectors[1]) == child ? 1 : 0;
+      b = mapped(std::move(b), stem == "Force3D" ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
+                 site_for(mate.connectors[side]));
+      b.sign = side == 1 ? 1.0 : -1.0;
+      return b;
+    }
+    return unmapped(std::move(b), "`" + mate.path + "` has no MuJoCo element that carries it");
+  }
+
+  SignalBinding bind_body(SignalBinding b, std::string_view stem, int n) {
+    const std::string body = name(view_.nodes[n].path);
+    if (!body_element_.count(n))
+      return unmapped(std::move(b), "`" + view_.nodes[n].path + "` was not emitted");
+    if (b.input) {
+      const bool linear = stem == "LinearVelocity3D";
+      if (!linear && stem != "AngularVelocity3D") return unmapped(std::move(b), "no MuJoCo input of a body");
+      if (mocap_.count(n)) {
+        return mapped(std::move(b),
+                      linear ? Quantity::KinematicLinearVelocity : Quantity::KinematicAngularVelocity,
+                      MjObject::Body, body);
+      }
+      if (free_roots_.count(n)) {
+        return mapped(std::move(b), linear ? Quantity::FreeLinearVelocity : Quantity::FreeAngularVelocity,
+                      MjObject::Joint, body);
+      }
+      return unmapped(std::move(b), "`" + view_.nodes[n].path +
+                                        "` moves through its joints in MuJoCo; its velocity cannot be set");
+    }
+    const Quantity q = stem == "Position3D" || stem == "Position" ? Quantity::BodyPosition
+                       : stem == "RPY"                            ? Quantity::BodyRPY
+                       : stem == "LinearVelocity3D"               ? Quantity::BodyLinearVelocity
+                       : stem == "AngularVelocity3D"              ? Quantity::BodyAngularVelocity
+                       : stem == "Acceleration3D"                 ? Quantity::BodyLinearAcceleration
+                                                                  : Quantity::None;
+    if (q == Quantity::None) return unmapped(std::move(b), "no MuJoCo quantity of a body matches it");
+    return mapped(std::move(b), q, MjObject::Body, body);
+  }
+
+  SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c) {
+    const Quantity q = b.input                       ? Quantity::None
+                       : stem == "Position3D"        ? Quantity::SitePosition
+                       : stem == "RPY"               ? Quantity::SiteRPY
+                       : stem == "LinearVelocity3D"  ? Quantity::SiteLinearVelocity
+                       : stem == "AngularVelocity3D" ? Quantity::SiteAngularVelocity
+                                                     : Quantity::None;
+    if (q == Quantity::None)
+      return unmapped(std::move(b), "no MuJoCo quantity of a mate connector matches it");
+    return mapped(std::move(b), q, MjObject::Site, site_for(c));
+  }
+
+  // A site at a mate connector, in the MuJoCo body that carries it (the world for system connectors).
+  std::string site_for(int c) {
+    const sn::Connector& connector = view_.connectors[c];
+    const std::string site = name(connector.path);
+    if (!sites_.insert(c).second) return site;
+    const int owner = vertex_of_connector(c);
+    auto body = body_element_.find(owner);
+    Element& parent = owner >= 0 && body != body_element_.end() ? *body->second : *world_;
+    const sn::Transform frame = owner >= 0 ? connector.local : snap_.connector_world[c];
+    parent.add("site").set("name", site).set("pos", frame.position).set_quat("quat", frame.rotation);
+    return site;
+  }
+
+  void add_sensor(SignalBinding& b) {
+    struct Sensor {
+      const char* element;
+      const char* objtype;  // frame sensors; nullptr: the element names its object by attribute
+      const char* attribute;
+    };
+    Sensor sensor{};
+    switch (b.quantity) {
+      case Quantity::JointPosition:
+        sensor = {"jointpos", nullptr, "joint"};
+        break;
+      case Quantity::JointVelocity:
+        sensor = {"jointvel", nullptr, "joint"};
+        break;
+      case Quantity::JointLimitForce:
+        sensor = {"jointlimitfrc", nullptr, "joint"};
+        break;
+      case Quantity::ActuatorForce:
+        sensor = {"actuatorfrc", nullptr, "actuator"};
+        break;
+      case Quantity::MateForce:
+        sensor = {"force", nullptr, "site"};
+        break;
+      case Quantity::MateTorque:
+        sensor = {"torque", nullptr, "site"};
+        break;
+      case Quantity::BodyPosition:
+        sensor = {"framepos", "xbody", nullptr};
+        break;
+      case Quantity::BodyRPY:
+        sensor = {"framequat", "xbody", nullptr};
+        break;  // the runtime gives RPY
+      case Quantity::BodyLinearVelocity:
+        sensor = {"framelinvel", "xbody", nullptr};
+        break;
+      case Quantity::BodyAngularVelocity:
+        sensor = {"frameangvel", "xbody", nullptr};
+        break;
+      case Quantity::BodyLinearAcceleration:
+        sensor = {"framelinacc", "xbody", nullptr};
+        break;
+      case Quantity::SitePosition:
+        sensor = {"framepos", "site", nullptr};
+        break;
+      case Quantity::SiteRPY:
+        sensor = {"framequat", "site", nullptr};
+        break;
+      case Quantity::SiteLinearVelocity:
+        sensor = {"framelinvel", "site", nullptr};
+        break;
+      case Quantity::SiteAngularVelocity:
+        sensor = {"frameangvel", "site", nullptr};
+        break;
+      default:
+        return;  // computed by the runtime
+    }
+    Element& e = sensors_->add(sensor.element);
+    e.set("name", name(b.path));
+    if (sensor.objtype) {
+      e.set("objtype", sensor.objtype).set("objname", b.names.front());
+    } else {
+      e.set(sensor.attribute, b.names.front());
+    }
+    b.sensor = name(b.path);
+  }
+
+  template <typename T>
+  int index_of(std::unordered_map<fe::ObjectId, int>& index, fe::ObjectId id, const std::vector<T>& items) {
+    if (index.empty()) {
+      for (size_t k = 0; k < items.size(); ++k) index[items[k].object] = static_cast<int>(k);
+    }
+    auto it = index.find(id);
+    return it == index.end() ? -1 : it->second;
   }
 
   std::string view_path(fe::ObjectId id) const { return ev_.graph().path(id); }
@@ -818,44 +1048,6 @@ class Emitter {
     }
     auto it = body_index_.find(id);
     return it == body_index_.end() ? -1 : it->second;
-  }
-
-  // --------------------------------------------------------------------------------------- manifest
-
-  std::string manifest() {
-    std::string out = "{\n  \"model\": " + fe::quoted(options_.model_name) + ",\n  \"signals\": [";
-    bool first = true;
-    for (const sn::Signal& s : view_.signals) {
-      std::string element = "none", target, extra;
-      if (s.input) {
-        auto ends_with = [&](std::string_view suffix) {
-          return s.type.size() >= suffix.size() &&
-                 s.type.compare(s.type.size() - suffix.size(), suffix.size(), suffix) == 0;
-        };
-        if (auto it = actuator_ctrl_.find(s.source); it != actuator_ctrl_.end()) {
-          const std::string index = ", \"index\": " + std::to_string(it->second.first);
-          if (ends_with("Velocity1DInput") || ends_with("Torque1DInput") || ends_with("Force1DInput")) {
-            // MJCF has no initial control: the runtime sets ctrl[index] = initial before the first step.
-            element = "ctrl";
-            target = name(view_path(s.source));
-            extra = index + ", \"initial\": " + number(it->second.second);
-          } else if (ends_with("TorqueRangeInput") || ends_with("ForceRangeInput")) {
-            element = "forcerange";  // the runtime writes m->actuator_forcerange[2 index ..]
-            target = name(view_path(s.source));
-            extra = index;
-          }
-        }
-      } else if (auto it = signals_.find(s.object); it != signals_.end()) {
-        element = it->second.first;
-        target = it->second.second;
-      }
-      out += first ? "\n" : ",\n";
-      first = false;
-      out += "    {\"path\": " + fe::quoted(s.path) + ", \"direction\": \"" + (s.input ? "input" : "output") +
-             "\", \"type\": " + fe::quoted(s.type) + ", \"enabled\": " + (s.enabled ? "true" : "false") +
-             ", \"mujoco\": " + fe::quoted(element) + ", \"name\": " + fe::quoted(target) + extra + "}";
-    }
-    return out + "\n  ]\n}\n";
   }
 
   void warn(fe::SourceRange where, const std::string& message) {
@@ -908,9 +1100,24 @@ class Emitter {
   std::unordered_map<fe::ObjectId, int> body_index_;
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;
   std::map<fe::ObjectId, std::pair<int, double>> actuator_ctrl_;  // motor -> actuator index, initial ctrl
-  std::map<fe::ObjectId, std::pair<std::string, std::string>> signals_;
   size_t actuator_count_ = 0;
   Element* assets_ = nullptr;
+  Element* world_ = nullptr;
+  Element* sensors_ = nullptr;
+  std::set<int> mocap_;
+  std::set<int> sites_;                                         // connectors that have a site
+  std::map<int, int> child_of_mate_;                            // tree mate -> the body whose joint it is
+  std::map<int, std::vector<std::string>> equalities_of_mate_;  // loop mate -> its equality names
+  struct SpringInfo {
+    std::string joint;
+    double stiffness;
+    double rest;
+    double joint_rest;  // the rest of all springs on the joint (stiffness-weighted)
+  };
+  std::map<fe::ObjectId, SpringInfo> springs_;
+  std::map<fe::ObjectId, std::string> range_joints_;
+  std::unordered_map<fe::ObjectId, int> interaction_index_;
+  std::unordered_map<fe::ObjectId, int> connector_index_;
 };
 
 }  // namespace

@@ -21,30 +21,35 @@ enum class MjObject { None, Actuator, Joint, Body, Site, Equality };
 enum class Quantity {
   None,  // not mapped; `reason` says why (enabled outputs are also warned about at emission)
   // --- inputs (some are readable as outputs too, e.g. a motor's target output reads Ctrl)
-  Ctrl,                 // Actuator: d->ctrl[id]; `initial` is the control before the first step
-  ForceRange,           // Actuator: m->actuator_forcerange[2id], [2id+1] = (min, max)   (Vec2, also readable)
-  EqualityActive,       // Equality: m->eq_active[id] for every name (Bool, also readable)
+  Ctrl,            // Actuator: d->ctrl[id]; `initial` is the control before the first step
+  ForceRange,      // Actuator: m->actuator_forcerange[2id], [2id+1] = (min, max)   (Vec2, also readable)
+  EqualityActive,  // Equality: m->eq_active[id] for every name (Bool, also readable)
   KinematicLinearVelocity,   // Body (mocap): world linear velocity; the runtime integrates d->mocap_pos
   KinematicAngularVelocity,  // Body (mocap): world angular velocity; the runtime integrates d->mocap_quat
   FreeLinearVelocity,        // Joint (free): sets the world linear velocity of a free body (qvel[0..2])
   FreeAngularVelocity,       // Joint (free): sets the world angular velocity (MuJoCo keeps it in body axes)
+  SpringRest,  // Joint: m->qpos_spring[jnt_qposadr[id]], the joint spring's rest (Real, also readable)
   // --- outputs
-  JointPosition,        // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
-  JointVelocity,        // Joint: d->qvel[jnt_dofadr[id]], times `sign`
-  ActuatorForce,        // Actuator: d->actuator_force[id] (N or N·m on the joint)
-  BodyPosition,         // Body: d->xpos (the body frame's origin, world)
-  BodyRPY,              // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
-  BodyLinearVelocity,   // Body: the body frame origin's world linear velocity
-  BodyAngularVelocity,  // Body: world angular velocity
+  JointPosition,    // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
+  JointVelocity,    // Joint: d->qvel[jnt_dofadr[id]], times `sign`
+  ActuatorForce,    // Actuator: d->actuator_force[id] (N or N·m on the joint)
+  SpringForce,      // Joint: gain * (qpos - offset): one spring's force, gain = -stiffness, offset = its rest
+  JointLimitForce,  // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
+  BodyPosition,     // Body: d->xpos (the body frame's origin, world)
+  BodyRPY,          // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
+  BodyLinearVelocity,      // Body: the body frame origin's world linear velocity
+  BodyAngularVelocity,     // Body: world angular velocity
   BodyLinearAcceleration,  // Body: world linear acceleration of the body frame origin
-  SitePosition,         // Site (a mate connector): d->site_xpos
-  SiteRPY,              // Site: orientation as roll, pitch, yaw
-  SiteLinearVelocity,   // Site: world linear velocity of the site origin
-  SiteAngularVelocity,  // Site: world angular velocity
-  MateForce,            // Site on the child side of a tree mate: constraint + joint force the parent exerts on
-                        // the child at the connector, world axes, times `sign` (see the emitter for the side)
-  MateTorque,           // the same, torque about the connector origin
-  Constant,             // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
+  SitePosition,            // Site (a mate connector): d->site_xpos
+  SiteRPY,                 // Site: orientation as roll, pitch, yaw
+  SiteLinearVelocity,      // Site: world linear velocity of the site origin
+  SiteAngularVelocity,     // Site: world angular velocity
+  MateForce,   // Site at the MuJoCo child's connector of a tree mate: the force connectors[0]'s side
+               // exerts on connectors[1]'s side, world axes. MuJoCo gives the parent's force on the
+               // child subtree (the `force` sensor, site axes); `sign` is -1 when the child holds
+               // connectors[0]
+  MateTorque,  // the same, torque about the connector origin
+  Constant,    // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
 };
 
 struct SignalBinding {
@@ -58,18 +63,29 @@ struct SignalBinding {
   MjObject object = MjObject::None;
   std::vector<std::string> names;  // MuJoCo names of `object` (usually one; a hinge loop closure has two)
   std::string sensor;              // a MuJoCo sensor carrying the same value, "" when none
-  double sign = 1.0;               // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's
-  double initial = 0.0;            // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
-  std::string reason;              // None: why nothing maps
+  double sign = 1.0;     // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's
+  double initial = 0.0;  // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
+  double gain = 0.0;     // SpringForce
+  double offset = 0.0;   // SpringForce
+  std::string reason;    // None: why nothing maps
 };
+
+// The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").
+struct SignalKind {
+  SignalValue value = SignalValue::Real;
+  std::string unit;
+};
+SignalKind signal_kind(std::string_view type);
+// A signal model's name without namespace and Input/Output ending: "Physics.Signals.AngleOutput" -> "Angle".
+std::string_view signal_stem(std::string_view type);
 
 std::string_view to_string(SignalValue value);
 std::string_view to_string(MjObject object);
 std::string_view to_string(Quantity quantity);
 
 // The manifest: {"model": ..., "signals": [{"path", "direction", "type", "value", "unit", "enabled",
-// "quantity", "object", "names", "sensor", "sign", "initial", "reason"}]} with keys in that order, one
-// signal per line, deterministic.
+// "quantity", "object", "names", "sensor", "sign", "initial", "gain", "offset", "reason"}]} with keys in that
+// order, one signal per line, deterministic.
 std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings);
 
 }  // namespace openplx::mjcf

@@ -11,7 +11,7 @@
 
 #include "mjcf_emitter/check.h"
 #include "snap/physics_view.h"
-#include "tests/support/eval_fixture.h"
+#include "tests/support/mjcf_fixture.h"
 
 namespace {
 
@@ -20,37 +20,7 @@ namespace sn = openplx::snap;
 namespace mj = openplx::mjcf;
 namespace fs = std::filesystem;
 
-class Mjcf : public openplx::testing::EvalTest {
- protected:
-  // Emits the loaded model into dir()/name.xml; returns the path ("" on errors).
-  std::string emit(const std::string& name) {
-    view_ = sn::build_physics_view(*evaluator_, root_, sink_);
-    snap_ = sn::run_snap(view_, sink_);
-    mj::EmitOptions options;
-    options.model_name = evaluator_->root_name();
-    options.output_dir = dir();
-    emitted_ = mj::emit_mjcf(view_, snap_, *evaluator_, options, sink_);
-    xml_ = emitted_.document.to_string();
-    const std::string path = dir() + "/" + name + ".xml";
-    std::ofstream(path) << xml_;
-    return path;
-  }
-  // Loads ../shared/corpus/agxunity/<file> (root `model`, else the file's last).
-  bool load_corpus(const std::string& file, const char* model = nullptr) {
-    return load_file((fs::path(OPENPLX_CORPUS_DIR) / "agxunity" / file).string(), model);
-  }
-  mjModel* load_mujoco(const std::string& path) {
-    char error[1000] = "";
-    mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
-    EXPECT_NE(m, nullptr) << error << "\n" << xml_;
-    return m;
-  }
-
-  sn::PhysicsView view_;
-  sn::SnapResult snap_;
-  mj::Emitted emitted_;
-  std::string xml_;
-};
+using Mjcf = openplx::testing::MjcfTest;
 
 TEST_F(Mjcf, EveryCorpusModelLoadsInMuJoCoWhereSnapPutIt) {
   const fs::path agx = fs::path(OPENPLX_CORPUS_DIR) / "agxunity";
@@ -396,27 +366,6 @@ TEST_F(Mjcf, VelocityMotorIsStableAndTracks) {
 
 // The signal manifest maps a motor's target input to its actuator's ctrl (with the model's initial value,
 // which MJCF cannot hold), its range input to forcerange, and outputs to their sensors.
-TEST_F(Mjcf, ManifestMapsInputsAndOutputs) {
-  ASSERT_TRUE(load_corpus("torque_range.openplx")) << all_diags();
-  emit("torque_range");
-  accept_all_diags();
-  const std::string& json = emitted_.manifest_json;
-  EXPECT_NE(
-      json.find(
-          "{\"path\": \"pendulum.motor.torque_range_input\", \"direction\": \"input\", \"type\": "
-          "\"Physics.Signals.TorqueRangeInput\", \"enabled\": true, \"mujoco\": \"forcerange\", \"name\": "
-          "\"pendulum.motor\", \"index\": 0}"),
-      std::string::npos)
-      << json;
-  EXPECT_NE(json.find("\"mujoco\": \"ctrl\", \"name\": \"pendulum.motor\", \"index\": 0, \"initial\": "),
-            std::string::npos)
-      << json;
-  EXPECT_NE(json.find("\"path\": \"pendulum.motor.enable_interaction_input\""), std::string::npos);
-  EXPECT_EQ(json.find("\"enable_interaction_input\", \"direction\": \"input\", \"type\": "
-                      "\"Physics.Signals.EnableInteractionInput\", \"enabled\": true, \"mujoco\": \"ctrl\""),
-            std::string::npos);
-}
-
 // The angle convention end to end: the joint reading is connectors[1]'s angle relative to connectors[0]'s,
 // whichever side the moving body holds, and a positive torque turns that angle up. A 1 kg box turning about
 // the vertical axis (no gravity torque) accelerates at tau / I: I = m (a^2 + b^2) / 12 = 1/6 kg m^2 for a

@@ -1,0 +1,183 @@
+#include "mjcf_emitter/signal_binding.h"
+
+#include <array>
+#include <utility>
+
+#include "frontend/quoted.h"
+#include "mjcf_emitter/xml.h"
+
+namespace openplx::mjcf {
+namespace {
+
+bool ends_with(std::string_view text, std::string_view suffix) {
+  return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
+}
+
+}  // namespace
+
+std::string_view signal_stem(std::string_view type) {
+  if (const size_t dot = type.rfind('.'); dot != std::string_view::npos) type.remove_prefix(dot + 1);
+  for (std::string_view end : {"Input", "Output"}) {
+    if (ends_with(type, end)) type.remove_suffix(end.size());
+  }
+  return type;
+}
+
+SignalKind signal_kind(std::string_view type) {
+  using V = SignalValue;
+  // Longest names first where one ends another (AngularVelocity1D before Velocity1D is not needed: exact
+  // match).
+  static const std::array<std::pair<std::string_view, SignalKind>, 27> kinds{{
+      {"Angle", {V::Real, "rad"}},
+      {"AngularVelocity1D", {V::Real, "rad/s"}},
+      {"Position1D", {V::Real, "m"}},
+      {"LinearVelocity1D", {V::Real, "m/s"}},
+      {"RelativeVelocity1D", {V::Real, "m/s"}},
+      {"Torque1D", {V::Real, "N*m"}},
+      {"Force1D", {V::Real, "N"}},
+      {"TorqueRange", {V::Vec2, "N*m"}},
+      {"ForceRange", {V::Vec2, "N"}},
+      {"Position3D", {V::Vec3, "m"}},
+      {"Position", {V::Vec3, "m"}},
+      {"RPY", {V::Vec3, "rad"}},
+      {"LinearVelocity3D", {V::Vec3, "m/s"}},
+      {"AngularVelocity3D", {V::Vec3, "rad/s"}},
+      {"Acceleration3D", {V::Vec3, "m/s^2"}},
+      {"AngularAcceleration3D", {V::Vec3, "rad/s^2"}},
+      {"Force3D", {V::Vec3, "N"}},
+      {"Torque3D", {V::Vec3, "N*m"}},
+      {"Duration", {V::Real, "s"}},
+      {"Mass", {V::Real, "kg"}},
+      {"Rpm", {V::Real, "rev/min"}},
+      {"Fraction", {V::Real, ""}},
+      {"Ratio", {V::Real, ""}},
+      {"Int", {V::Int, ""}},
+      {"Bool", {V::Bool, ""}},
+      {"EnableInteraction", {V::Bool, ""}},
+      {"InteractionEnabled", {V::Bool, ""}},
+  }};
+  const std::string_view s = signal_stem(type);
+  for (const auto& [name, kind] : kinds) {
+    if (s == name) return kind;
+  }
+  for (std::string_view boolean : {"Activate", "Activated", "Engage", "Engaged", "LockUp", "LockedUp"}) {
+    if (ends_with(s, boolean)) return {V::Bool, ""};
+  }
+  return {V::Real, ""};
+}
+
+std::string_view to_string(SignalValue value) {
+  switch (value) {
+    case SignalValue::Real:
+      return "real";
+    case SignalValue::Bool:
+      return "bool";
+    case SignalValue::Int:
+      return "int";
+    case SignalValue::Vec2:
+      return "vec2";
+    case SignalValue::Vec3:
+      return "vec3";
+  }
+  return "real";
+}
+
+std::string_view to_string(MjObject object) {
+  switch (object) {
+    case MjObject::None:
+      return "none";
+    case MjObject::Actuator:
+      return "actuator";
+    case MjObject::Joint:
+      return "joint";
+    case MjObject::Body:
+      return "body";
+    case MjObject::Site:
+      return "site";
+    case MjObject::Equality:
+      return "equality";
+  }
+  return "none";
+}
+
+std::string_view to_string(Quantity quantity) {
+  switch (quantity) {
+    case Quantity::None:
+      return "none";
+    case Quantity::Ctrl:
+      return "ctrl";
+    case Quantity::ForceRange:
+      return "force_range";
+    case Quantity::EqualityActive:
+      return "equality_active";
+    case Quantity::KinematicLinearVelocity:
+      return "kinematic_linear_velocity";
+    case Quantity::KinematicAngularVelocity:
+      return "kinematic_angular_velocity";
+    case Quantity::FreeLinearVelocity:
+      return "free_linear_velocity";
+    case Quantity::FreeAngularVelocity:
+      return "free_angular_velocity";
+    case Quantity::SpringRest:
+      return "spring_rest";
+    case Quantity::JointPosition:
+      return "joint_position";
+    case Quantity::JointVelocity:
+      return "joint_velocity";
+    case Quantity::ActuatorForce:
+      return "actuator_force";
+    case Quantity::SpringForce:
+      return "spring_force";
+    case Quantity::JointLimitForce:
+      return "joint_limit_force";
+    case Quantity::BodyPosition:
+      return "body_position";
+    case Quantity::BodyRPY:
+      return "body_rpy";
+    case Quantity::BodyLinearVelocity:
+      return "body_linear_velocity";
+    case Quantity::BodyAngularVelocity:
+      return "body_angular_velocity";
+    case Quantity::BodyLinearAcceleration:
+      return "body_linear_acceleration";
+    case Quantity::SitePosition:
+      return "site_position";
+    case Quantity::SiteRPY:
+      return "site_rpy";
+    case Quantity::SiteLinearVelocity:
+      return "site_linear_velocity";
+    case Quantity::SiteAngularVelocity:
+      return "site_angular_velocity";
+    case Quantity::MateForce:
+      return "mate_force";
+    case Quantity::MateTorque:
+      return "mate_torque";
+    case Quantity::Constant:
+      return "constant";
+  }
+  return "none";
+}
+
+std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings) {
+  using frontend::quoted;
+  std::string out = "{\n  \"model\": " + quoted(model_name) + ",\n  \"signals\": [";
+  bool first = true;
+  for (const SignalBinding& b : bindings) {
+    std::string names = "[";
+    for (size_t k = 0; k < b.names.size(); ++k) names += (k ? ", " : "") + quoted(b.names[k]);
+    names += "]";
+    out += first ? "\n" : ",\n";
+    first = false;
+    out += "    {\"path\": " + quoted(b.path) + ", \"direction\": \"" + (b.input ? "input" : "output") +
+           "\", \"type\": " + quoted(b.type) + ", \"value\": \"" + std::string(to_string(b.value)) +
+           "\", \"unit\": " + quoted(b.unit) + ", \"enabled\": " + (b.enabled ? "true" : "false") +
+           ", \"quantity\": \"" + std::string(to_string(b.quantity)) + "\", \"object\": \"" +
+           std::string(to_string(b.object)) + "\", \"names\": " + names +
+           ", \"sensor\": " + quoted(b.sensor) + ", \"sign\": " + number(b.sign) +
+           ", \"initial\": " + number(b.initial) + ", \"gain\": " + number(b.gain) +
+           ", \"offset\": " + number(b.offset) + ", \"reason\": " + quoted(b.reason) + "}";
+  }
+  return out + "\n  ]\n}\n";
+}
+
+}  // namespace openplx::mjcf

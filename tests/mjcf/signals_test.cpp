@@ -1,0 +1,275 @@
+// Signal bindings: every OpenPLX input and output gets one binding; what a binding names exists in the
+// MuJoCo model that loads the emitted MJCF, and reading or writing it there does what the signal means.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "mjcf_emitter/signal_binding.h"
+#include "tests/support/mjcf_fixture.h"
+
+namespace {
+
+namespace fe = openplx::frontend;
+namespace mj = openplx::mjcf;
+namespace fs = std::filesystem;
+using Q = mj::Quantity;
+
+class Signals : public openplx::testing::MjcfTest {
+ protected:
+  const mj::SignalBinding& binding(const std::string& path) const {
+    for (const mj::SignalBinding& b : emitted_.signals) {
+      if (b.path == path) return b;
+    }
+    ADD_FAILURE() << "no binding for " << path;
+    static const mj::SignalBinding none;
+    return none;
+  }
+  static mjtObj mj_type(mj::MjObject object) {
+    switch (object) {
+      case mj::MjObject::Actuator:
+        return mjOBJ_ACTUATOR;
+      case mj::MjObject::Joint:
+        return mjOBJ_JOINT;
+      case mj::MjObject::Body:
+        return mjOBJ_BODY;
+      case mj::MjObject::Site:
+        return mjOBJ_SITE;
+      case mj::MjObject::Equality:
+        return mjOBJ_EQUALITY;
+      case mj::MjObject::None:
+        break;
+    }
+    return mjOBJ_UNKNOWN;
+  }
+  static int id(const mjModel* m, mj::MjObject object, const std::string& name) {
+    return mj_name2id(m, mj_type(object), name.c_str());
+  }
+};
+
+TEST_F(Signals, EveryCorpusSignalHasOneBindingWhoseElementsExistInMuJoCo) {
+  const fs::path agx = fs::path(OPENPLX_CORPUS_DIR) / "agxunity";
+  size_t mapped = 0;
+  for (const auto& entry : fs::directory_iterator(agx)) {
+    const std::string name = entry.path().stem().string();
+    if (entry.path().extension() != ".openplx" || name == "extended_pendulum_from_agx") continue;
+    SCOPED_TRACE(name);
+    std::vector<std::string> bundles;
+    if (name == "use_test_bundle") bundles.push_back((agx / "TestBundle").string());
+    sink_.clear();
+    ASSERT_TRUE(load_file(entry.path().string(), name == "simple_lidar" ? "ValidLidar" : nullptr, bundles));
+    const std::string path = emit(name);
+    ASSERT_EQ(emitted_.signals.size(), view_.signals.size());
+    mjModel* m = load_mujoco(path);
+    ASSERT_NE(m, nullptr);
+    for (const mj::SignalBinding& b : emitted_.signals) {
+      SCOPED_TRACE(b.path);
+      if (b.quantity == Q::None) {
+        EXPECT_FALSE(b.reason.empty());
+        continue;
+      }
+      ++mapped;
+      for (const std::string& element : b.names) EXPECT_GE(id(m, b.object, element), 0) << element;
+      if (!b.sensor.empty()) EXPECT_GE(mj_name2id(m, mjOBJ_SENSOR, b.sensor.c_str()), 0);
+      if (!b.input && b.enabled && b.quantity != Q::Ctrl && b.quantity != Q::ForceRange &&
+          b.quantity != Q::Constant && b.quantity != Q::EqualityActive && b.quantity != Q::SpringRest &&
+          b.quantity != Q::SpringForce) {
+        EXPECT_FALSE(b.sensor.empty()) << "an enabled output with a MuJoCo sensor kind has no sensor";
+      }
+    }
+    mj_deleteModel(m);
+  }
+  EXPECT_GT(mapped, 100u);
+  accept_all_diags();
+}
+
+// torque_range: a velocity motor's inputs are its control and its force range; with forcerange written as the
+// torque_range_input (-1, 1) asks, MuJoCo's actuator force stays within it.
+TEST_F(Signals, TorqueRangeInputBoundsTheMotorTorque) {
+  ASSERT_TRUE(load_corpus("torque_range.openplx")) << all_diags();
+  const std::string path = emit("torque_range");
+  accept_all_diags();
+  const mj::SignalBinding& speed = binding("pendulum.motor.target_angular_velocity_input");
+  EXPECT_EQ(speed.quantity, Q::Ctrl);
+  EXPECT_EQ(speed.object, mj::MjObject::Actuator);
+  EXPECT_EQ(speed.initial, 1.0);  // target_speed: 1
+  EXPECT_EQ(speed.unit, "rad/s");
+  const mj::SignalBinding& range = binding("pendulum.motor.torque_range_input");
+  EXPECT_EQ(range.quantity, Q::ForceRange);
+  EXPECT_EQ(range.value, mj::SignalValue::Vec2);
+  const mj::SignalBinding& torque = binding("pendulum.motor.torque_output");
+  EXPECT_EQ(torque.quantity, Q::ActuatorForce);
+  EXPECT_EQ(torque.sensor, "pendulum.motor.torque_output");
+
+  mjModel* m = load_mujoco(path);
+  ASSERT_NE(m, nullptr);
+  mjData* d = mj_makeData(m);
+  const int a = id(m, mj::MjObject::Actuator, speed.names[0]);
+  const int sensor = mj_name2id(m, mjOBJ_SENSOR, torque.sensor.c_str());
+  d->ctrl[a] = speed.initial;
+  mj_step(m, d);
+  // The 10 kg rod hangs 0.3 pi off vertical: holding it takes m g (L/2) sin(0.3 pi) = 39.7 N m, far above 2.
+  EXPECT_GT(std::abs(d->actuator_force[a]), 2.0);
+  m->actuator_forcerange[2 * a] = -1;
+  m->actuator_forcerange[2 * a + 1] = 1;
+  mj_step(m, d);
+  EXPECT_LE(std::abs(d->actuator_force[a]), 1.0 + 1e-12);
+  mj_forward(m, d);  // sensors are evaluated before the step: refresh
+  EXPECT_NEAR(d->sensordata[m->sensor_adr[sensor]], d->actuator_force[a], 1e-12);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+// A mate's force output reads the force connectors[0]'s side exerts on connectors[1]'s: a 2 kg body hanging
+// at rest from a world connector (connectors[0] = the world) is held up by m g = 19.62 N.
+TEST_F(Signals, MateForceOutputHoldsAHangingBodyUp) {
+  for (const bool body_first : {false, true}) {
+    SCOPED_TRACE(body_first ? "body holds connectors[0]" : "body holds connectors[1]");
+    const std::string connectors = body_first ? "[ball.top, base]" : "[base, ball.top]";
+    ASSERT_TRUE(
+        load("Ball is Physics3D.Bodies.RigidBody:\n"
+             "    inertia.mass: 2\n"
+             "    geometry is Physics3D.Geometries.Sphere:\n"
+             "        radius: 0.1\n"
+             "    top is Physics3D.Interactions.MateConnector:\n"
+             "        position.z: 0.5\n"
+             "        main_axis: Math.Vec3.Y_AXIS()\n"
+             "        normal: Math.Vec3.Z_AXIS()\n"
+             "Scene is Physics3D.System:\n"
+             "    base is Physics3D.Interactions.MateConnector:\n"
+             "        main_axis: Math.Vec3.Y_AXIS()\n"
+             "        normal: Math.Vec3.Z_AXIS()\n"
+             "    ball is Ball\n"
+             "    hinge is Physics3D.Interactions.Hinge:\n"
+             "        connectors: " +
+             connectors + "\n        force_output.enabled: true\n"))
+        << all_diags();
+    const std::string path = emit(body_first ? "force0" : "force1");
+    accept_all_diags();
+    const mj::SignalBinding& force = binding("hinge.force_output");
+    ASSERT_EQ(force.quantity, Q::MateForce);
+    EXPECT_EQ(force.sign, body_first ? -1.0 : 1.0);
+    mjModel* m = load_mujoco(path);
+    ASSERT_NE(m, nullptr);
+    mjData* d = mj_makeData(m);
+    mj_forward(m, d);
+    const int site = id(m, force.object, force.names[0]);
+    const int sensor = mj_name2id(m, mjOBJ_SENSOR, force.sensor.c_str());
+    // The sensor is in site axes; turn it into world axes and apply the binding's sign.
+    const mjtNum* local = d->sensordata + m->sensor_adr[sensor];
+    mjtNum world[3];
+    mju_mulMatVec(world, d->site_xmat + 9 * site, local, 3, 3);
+    const double g = 9.81;
+    // Connectors[0]'s side holds connectors[1]'s: up when the world is connectors[0], down on the world
+    // otherwise.
+    EXPECT_NEAR(force.sign * world[2], body_first ? -2 * g : 2 * g, 1e-9);
+    EXPECT_NEAR(world[0], 0, 1e-9);
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+}
+
+// is_dynamic: false bodies are mocap bodies: their velocity inputs are kinematic, and what hangs from them
+// follows when the runtime moves them.
+TEST_F(Signals, KinematicBodyIsMocapAndCarriesItsChildren) {
+  ASSERT_TRUE(
+      load("Cart is Physics3D.Bodies.RigidBody:\n"
+           "    is_dynamic: false\n"
+           "    geometry is Physics3D.Geometries.Box:\n"
+           "        size: {0.4, 0.2, 0.1}\n"
+           "    pivot is Physics3D.Interactions.MateConnector:\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "Rod is Physics3D.Bodies.RigidBody:\n"
+           "    inertia.mass: 1\n"
+           "    geometry is Physics3D.Geometries.Box:\n"
+           "        size: {0.05, 0.05, 1}\n"
+           "    top is Physics3D.Interactions.MateConnector:\n"
+           "        position.z: 0.5\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "Scene is Physics3D.System:\n"
+           "    cart is Cart\n"
+           "    rod is Rod\n"
+           "    hinge is Physics3D.Interactions.Hinge:\n"
+           "        connectors: [cart.pivot, rod.top]\n"))
+      << all_diags();
+  const std::string path = emit("cart");
+  accept_all_diags();
+  EXPECT_NE(xml_.find("<body name=\"cart\" pos=\"0 0 0\" quat=\"1 0 0 0\" mocap=\"true\">"),
+            std::string::npos)
+      << xml_;
+  const mj::SignalBinding& v = binding("cart.linear_velocity_world_input");
+  EXPECT_EQ(v.quantity, Q::KinematicLinearVelocity);
+  EXPECT_EQ(v.names, std::vector<std::string>{"cart"});
+  EXPECT_EQ(binding("rod.linear_velocity_world_input").quantity, Q::None);  // it moves through its hinge
+  mjModel* m = load_mujoco(path);
+  ASSERT_NE(m, nullptr);
+  mjData* d = mj_makeData(m);
+  const int cart = id(m, v.object, "cart");
+  const int rod = mj_name2id(m, mjOBJ_BODY, "rod");
+  ASSERT_GE(m->body_mocapid[cart], 0);
+  d->mocap_pos[3 * m->body_mocapid[cart]] = 0.3;
+  mj_forward(m, d);
+  EXPECT_NEAR(d->xpos[3 * rod], 0.3, 1e-12);
+  EXPECT_NEAR(d->xpos[3 * rod + 2], -0.5, 1e-12);
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+// LinearSpringTest: the spring's target input moves the joint's spring rest; its force output is -k (q -
+// rest).
+TEST_F(Signals, SpringBindingsCarryRestAndStiffness) {
+  ASSERT_TRUE(load_corpus("LinearSpringTest.openplx")) << all_diags();
+  const std::string path = emit("spring");
+  accept_all_diags();
+  const mj::SignalBinding* rest = nullptr;
+  const mj::SignalBinding* force = nullptr;
+  for (const mj::SignalBinding& b : emitted_.signals) {
+    if (b.path.ends_with("target_position_input")) rest = &b;
+    if (b.path.ends_with("external_spring.force_output")) force = &b;
+  }
+  ASSERT_TRUE(rest && force);
+  EXPECT_EQ(rest->quantity, Q::SpringRest);
+  EXPECT_EQ(force->quantity, Q::SpringForce);
+  mjModel* m = load_mujoco(path);
+  ASSERT_NE(m, nullptr);
+  const int joint = id(m, rest->object, rest->names[0]);
+  ASSERT_GE(joint, 0);
+  EXPECT_DOUBLE_EQ(m->qpos_spring[m->jnt_qposadr[joint]], rest->initial);
+  EXPECT_DOUBLE_EQ(-force->gain, m->jnt_stiffness[joint]);  // the one spring on that joint
+  mj_deleteModel(m);
+}
+
+TEST_F(Signals, ManifestIsDeterministicAndListsEveryBinding) {
+  ASSERT_TRUE(load_corpus("signal_test.openplx")) << all_diags();
+  emit("a");
+  const std::string first = emitted_.manifest_json;
+  emit("b");
+  accept_all_diags();
+  EXPECT_EQ(first, emitted_.manifest_json);
+  size_t entries = 0;
+  for (size_t at = first.find("{\"path\": "); at != std::string::npos; at = first.find("{\"path\": ", at + 1))
+    ++entries;
+  EXPECT_EQ(entries, emitted_.signals.size());
+  EXPECT_NE(
+      first.find("{\"path\": \"motorSpeedInput\", \"direction\": \"input\", \"type\": "
+                 "\"Physics.Signals.AngularVelocity1DInput\", \"value\": \"real\", \"unit\": \"rad/s\", "
+                 "\"enabled\": true, \"quantity\": \"ctrl\", \"object\": \"actuator\", \"names\": "
+                 "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"gain\": 0, \"offset\": 0, "
+                 "\"reason\": \"\"}"),
+      std::string::npos)
+      << first;
+}
+
+TEST(SignalKind, UnitsAndValueKindsFollowTheModelName) {
+  EXPECT_EQ(mj::signal_kind("Physics.Signals.AngleOutput").unit, "rad");
+  EXPECT_EQ(mj::signal_kind("Physics.Signals.TorqueRangeInput").value, mj::SignalValue::Vec2);
+  EXPECT_EQ(mj::signal_kind("Physics3D.Signals.LinearVelocity3DOutput").unit, "m/s");
+  EXPECT_EQ(mj::signal_kind("Physics.Signals.EnableInteractionInput").value, mj::SignalValue::Bool);
+  EXPECT_EQ(mj::signal_stem("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"), "AngularVelocity3D");
+}
+
+}  // namespace
