@@ -249,8 +249,24 @@ class Emitter {
     return body;
   }
 
+  // Flexibility and dissipation of a mate's constrained degrees of freedom: tree joints are exactly rigid in
+  // MuJoCo and equalities take MuJoCo's default softness, so a non-default model is reported, not dropped.
+  void warn_mate_softness(const sn::Mate& mate, bool loop) {
+    for (const char* attribute : {"flexibility", "dissipation"}) {
+      const fe::ObjectId model = object(mate.object, attribute);
+      if (model == fe::kNoObject) continue;
+      const std::string& type = ev_.graph().at(model).type->qualified;
+      if (type.find(".Default") != std::string::npos) continue;
+      warn(mate.where, "`" + mate.path + "." + attribute + "` (" + type +
+                           ") has no MuJoCo 2.2.2 mapping here; " +
+                           (loop ? "the loop-closing equality keeps MuJoCo's default softness"
+                                 : "the joint's constrained directions are rigid"));
+    }
+  }
+
   void emit_joints(Element& body, int node, int m) {
     const sn::Mate& mate = view_.mates[m];
+    warn_mate_softness(mate, false);
     if (mate.type == sn::MateType::Lock) return;  // a rigid child: no joint
     const int side = vertex_of_connector(mate.connectors[1]) == node ? 1 : 0;
     const sn::Connector& c = view_.connectors[mate.connectors[side]];
@@ -400,10 +416,15 @@ class Emitter {
         geom.set("type", "mesh").set("mesh", mesh);
         break;
       }
+      case Shape::ConvexMesh:
+      case Shape::TriMesh: {
+        const std::string mesh = vertex_mesh_asset(g);
+        if (mesh.empty()) return;
+        geom.set("type", "mesh").set("mesh", mesh);
+        break;
+      }
       default:
-        warn(g.where, "`" + g.path +
-                          "` is a geometry MuJoCo 2.2.2 cannot take here (convex or triangle mesh given "
-                          "by vertices); it was left out");
+        warn(g.where, "`" + g.path + "` is a geometry MuJoCo 2.2.2 has no counterpart for; it was left out");
         return;
     }
     geom.set("pos", frame.position).set_quat("quat", frame.rotation);
@@ -442,6 +463,35 @@ class Emitter {
       }
       material_names_[m] = name(path);
     }
+  }
+
+  // A mesh given by its vertices (and, for a TriMesh, its triangles) as an inline MJCF mesh asset.
+  std::string vertex_mesh_asset(const sn::Geometry& g) {
+    const size_t n = g.vertices.size();
+    bool valid_faces = g.indices.size() % 3 == 0;
+    for (int k : g.indices) valid_faces = valid_faces && k >= 0 && static_cast<size_t>(k) < n;
+    if (n < 4 || !valid_faces) {
+      warn(g.where, "`" + g.path +
+                        (n < 4 ? ".vertices` has fewer than 4 points"
+                               : ".indices` are not triangles of its vertices") +
+                        "; MuJoCo needs a solid mesh, so it was left out");
+      return {};
+    }
+    if (g.shape == sn::Geometry::Shape::TriMesh && g.collides) {
+      warn(g.where, "`" + g.path +
+                        "` is a triangle mesh; MuJoCo 2.2.2 collides with its convex hull, so contacts "
+                        "use the hull");
+    }
+    std::string vertex, face;
+    for (const Eigen::Vector3d& p : g.vertices) {
+      vertex += (vertex.empty() ? "" : " ") + number(p.x()) + " " + number(p.y()) + " " + number(p.z());
+    }
+    for (int k : g.indices) face += (face.empty() ? "" : " ") + std::to_string(k);
+    const std::string mesh_name = name(g.path);
+    Element& mesh = assets_->add("mesh");
+    mesh.set("name", mesh_name).set("vertex", vertex);
+    if (!face.empty()) mesh.set("face", face);
+    return mesh_name;
   }
 
   std::string mesh_asset(const sn::Geometry& g) {
@@ -487,6 +537,7 @@ class Emitter {
       const sn::Transform frame1 =
           e.b >= 0 ? view_.connectors[mate.connectors[1]].local : snap_.connector_world[mate.connectors[1]];
       const Eigen::Vector3d anchor = frame0.position;
+      warn_mate_softness(mate, true);
       switch (mate.type) {
         case sn::MateType::Lock: {
           Element& weld = equality.add("weld").set("name", name(mate.path)).set("body1", a);

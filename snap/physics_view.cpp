@@ -179,6 +179,10 @@ class ViewBuilder {
       case Geometry::Shape::Capsule:
         g.size = {real(id, "radius"), real(id, "height"), 0.0};
         break;
+      case Geometry::Shape::ConvexMesh:
+      case Geometry::Shape::TriMesh:
+        read_mesh_data(id, g);
+        break;
       default:
         break;
     }
@@ -252,6 +256,27 @@ class ViewBuilder {
     const fe::Slot* slot = ev_.graph().at(obj.owner).find(obj.name);
     if (!slot) return {};
     return slot->declaration->member->range;
+  }
+
+  // ConvexMesh/TriMesh vertices (Math.Vec3 instances) and TriMesh triangle indices.
+  void read_mesh_data(fe::ObjectId id, Geometry& g) {
+    if (const fe::Value* v = ev_.value(id, "vertices"); v && v->kind == fe::Value::Kind::Array) {
+      for (const fe::Value& item : v->array) {
+        if (item.kind != fe::Value::Kind::Object) continue;
+        Eigen::Vector3d p;
+        const char* axes[] = {"x", "y", "z"};
+        for (int i = 0; i < 3; ++i) {
+          const fe::Value* c = ev_.value(item.object, axes[i]);
+          p[i] = c && c->is_number() ? c->as_real() : 0.0;
+        }
+        g.vertices.push_back(p);
+      }
+    }
+    if (const fe::Value* v = ev_.value(id, "indices"); v && v->kind == fe::Value::Kind::Array) {
+      for (const fe::Value& item : v->array) {
+        if (item.kind == fe::Value::Kind::Int) g.indices.push_back(static_cast<int>(item.int_value));
+      }
+    }
   }
 
   Eigen::Vector3d vec3(fe::ObjectId object, std::string_view name) {

@@ -51,7 +51,9 @@ struct Geometry {
   Eigen::Vector3d size =
       Eigen::Vector3d::Zero();  // box: full extents; sphere: (r); cylinder, capsule: (r, h)
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-  std::string file;  // external mesh
+  std::string file;                       // external mesh
+  std::vector<Eigen::Vector3d> vertices;  // ConvexMesh, TriMesh (in the geometry frame)
+  std::vector<int> indices;               // TriMesh: three vertex indices per triangle
   frontend::ObjectId material = frontend::kNoObject;
   bool collides = true;
   bool in_mass = true;
