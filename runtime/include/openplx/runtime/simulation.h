@@ -1,0 +1,130 @@
+// Load an OpenPLX model straight into MuJoCo and drive it by OpenPLX signal names.
+//
+//   auto sim = openplx::runtime::Simulation::load("pendulum.openplx");
+//   auto torque = sim.input("motor.torque_input");
+//   auto angle = sim.output("hinge.angle_output");
+//   for (int k = 0; k < 1000; ++k) { torque.set(-5.0 * angle.real()); sim.step(); }
+//
+// Names are OpenPLX paths relative to the root model ("pendulum.motor.torque_input"); a name that starts with
+// the root model's name ("PendulumScene.pendulum.motor.torque_input") is accepted too. Unknown names, wrong
+// value types, NaN/Inf and inputs MuJoCo cannot carry throw SignalError naming the signal; the state is then
+// untouched. Outputs read after step() describe the state after that step; forces and accelerations
+// describe the step just taken. Input and Output handles stay valid while their Simulation lives (moves
+// included).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace openplx::runtime {
+
+// The model did not load: what() holds every diagnostic, printed as `file:line:col: error: message`.
+class LoadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A signal was misused: an unknown name (what() lists close names), a wrong value type, NaN/Inf, or a
+// signal that has no MuJoCo counterpart.
+class SignalError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+struct LoadOptions {
+  std::string model;                      // the root model; empty: the file's last model
+  std::vector<std::string> bundle_paths;  // extra bundle folders (like openplx2mjcf -B)
+};
+
+enum class ValueType { Real, Bool, Int, Vec2, Vec3 };
+
+struct SignalInfo {
+  std::string name;  // path relative to the root model
+  std::string type;  // the OpenPLX signal model, e.g. "Physics.Signals.AngleOutput"
+  ValueType value = ValueType::Real;
+  std::string unit;     // SI: "rad", "m/s", "N*m", ... ("" for Bool and dimensionless)
+  bool enabled = true;  // the model's `enabled` flag (every output can be read regardless)
+  bool mapped = false;  // false: MuJoCo has no counterpart, `mujoco` says why
+  std::string mujoco;   // what it reads or writes, e.g. "actuator motor: ctrl", or why it is not mapped
+};
+
+struct SimulationState;
+
+class Input {
+ public:
+  void set(double value);
+  void set(bool value);
+  void set(const Eigen::Vector2d& value);
+  void set(const Eigen::Vector3d& value);
+  const SignalInfo& info() const;
+
+ private:
+  friend class Simulation;
+  Input(SimulationState* state, int index) : state_(state), index_(index) {}
+  SimulationState* state_;
+  int index_;
+};
+
+class Output {
+ public:
+  double real() const;
+  bool boolean() const;
+  Eigen::Vector2d vec2() const;
+  Eigen::Vector3d vec3() const;
+  const SignalInfo& info() const;
+
+ private:
+  friend class Simulation;
+  Output(SimulationState* state, int index) : state_(state), index_(index) {}
+  SimulationState* state_;
+  int index_;
+};
+
+class Simulation {
+ public:
+  static Simulation load(const std::string& path, const LoadOptions& options = {});  // throws LoadError
+
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+  ~Simulation();
+
+  Input input(std::string_view name);  // throws SignalError
+  Output output(std::string_view name);
+
+  void step();                   // one MuJoCo step
+  void advance(double seconds);  // steps until time() has advanced by `seconds` (rounded to whole steps)
+  double time() const;
+  double timestep() const;
+
+  // Raw access for existing MuJoCo pipelines. After writing qpos/qvel or model fields yourself, call
+  // mj_forward(model(), data()) so outputs and the next step see the change.
+  const mjModel* model() const;
+  mjData* data();
+
+  std::vector<SignalInfo> inputs() const;
+  std::vector<SignalInfo> outputs() const;
+  const std::string& root_model() const;
+  const std::string& mjcf() const;                   // the MJCF the model was loaded from
+  const std::vector<std::string>& warnings() const;  // printed warnings of the transpilation
+
+ private:
+  explicit Simulation(std::unique_ptr<SimulationState> state);
+  std::unique_ptr<SimulationState> state_;
+};
+
+// Adds a folder searched for the standard bundles when the library is not run from its build or install
+// tree. The installed CMake package calls it (through OPENPLX2MJCF_INSTALLED_BUNDLES) with its own folder.
+void add_default_bundle_dir(const std::string& dir);
+
+#ifdef OPENPLX2MJCF_INSTALLED_BUNDLES
+inline const bool installed_bundles_registered =
+    (add_default_bundle_dir(OPENPLX2MJCF_INSTALLED_BUNDLES), true);
+#endif
+
+}  // namespace openplx::runtime

@@ -1,0 +1,92 @@
+#include "runtime/load_model.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "frontend/diagnostics.h"
+#include "frontend/pipeline.h"
+#include "mjcf_emitter/emitter.h"
+#include "openplx/runtime/simulation.h"
+#include "snap/physics_view.h"
+#include "snap/snap.h"
+
+namespace openplx::runtime {
+
+namespace fe = openplx::frontend;
+namespace fs = std::filesystem;
+
+std::vector<std::string>& default_bundle_dirs() {
+  static std::vector<std::string> dirs;
+  return dirs;
+}
+
+void add_default_bundle_dir(const std::string& dir) {
+  auto& dirs = default_bundle_dirs();
+  if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
+}
+
+namespace {
+
+// mj_loadXML reads files only: write the XML to a private temporary file, load it, remove it.
+mjModel* load_xml(const std::string& xml, std::string& error) {
+  std::string pattern = (fs::temp_directory_path() / "openplx-runtime-XXXXXX.xml").string();
+  const int fd = ::mkstemps(pattern.data(), 4);
+  if (fd < 0) {
+    error = "cannot create a temporary file for the MJCF";
+    return nullptr;
+  }
+  ::close(fd);
+  std::ofstream(pattern, std::ios::binary) << xml;
+  char message[1024] = "";
+  mjModel* model = mj_loadXML(pattern.c_str(), nullptr, message, sizeof(message));
+  std::error_code ec;
+  fs::remove(pattern, ec);
+  if (!model) error = message;
+  return model;
+}
+
+}  // namespace
+
+LoadedModel load_model(const std::string& path, const std::string& model,
+                       const std::vector<std::string>& bundle_paths) {
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink;
+  fe::LoadRequest request;
+  request.path = path;
+  if (!model.empty()) request.model = model;
+  request.bundle_dirs = bundle_paths;
+  for (const std::string& dir : default_bundle_dirs()) request.bundle_dirs.push_back(dir);
+  fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
+  LoadedModel loaded;
+  mjcf::Emitted emitted;
+  if (evaluation.root != fe::kNoObject && !sink.has_errors()) {
+    snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
+    snap::SnapResult assembled = snap::run_snap(view, sink);
+    mjcf::EmitOptions options;
+    options.model_name = evaluation.evaluator->root_name();
+    emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink);
+    loaded.root_name = options.model_name;
+  }
+  for (const fe::Diagnostic& d : sink.diagnostics()) {
+    std::ostringstream text;
+    fe::print_diagnostic(text, sources, d);
+    if (d.severity != fe::Severity::Error) loaded.warnings.push_back(text.str());
+  }
+  if (sink.has_errors() || evaluation.root == fe::kNoObject) {
+    std::ostringstream text;
+    fe::print_diagnostics(text, sources, sink.diagnostics());
+    throw LoadError(text.str().empty() ? path + ": error: the model could not be loaded\n" : text.str());
+  }
+  loaded.xml = emitted.document.to_string();
+  loaded.signals = std::move(emitted.signals);
+  std::string error;
+  loaded.model = load_xml(loaded.xml, error);
+  if (!loaded.model) throw LoadError(path + ": error: MuJoCo rejected the emitted MJCF: " + error + "\n");
+  return loaded;
+}
+
+}  // namespace openplx::runtime

@@ -1,0 +1,125 @@
+#include "openplx/runtime/simulation.h"
+
+#include <cmath>
+
+#include "runtime/load_model.h"
+#include "runtime/simulation_state.h"
+
+namespace openplx::runtime {
+
+Simulation Simulation::load(const std::string& path, const LoadOptions& options) {
+  LoadedModel loaded = load_model(path, options.model, options.bundle_paths);
+  auto state = std::make_unique<SimulationState>();
+  state->m = loaded.model;
+  state->d = mj_makeData(state->m);
+  if (!state->d) throw LoadError(path + ": error: MuJoCo could not allocate the simulation data\n");
+  state->root = std::move(loaded.root_name);
+  state->xml = std::move(loaded.xml);
+  state->warnings = std::move(loaded.warnings);
+  state->resolve(std::move(loaded.signals));
+  mj_forward(state->m, state->d);  // outputs describe the initial state; the first step needs only mj_step2
+  state->cache_limit_forces();
+  return Simulation(std::move(state));
+}
+
+Simulation::Simulation(std::unique_ptr<SimulationState> state) : state_(std::move(state)) {}
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+Simulation::~Simulation() = default;
+
+Input Simulation::input(std::string_view name) {
+  return Input(state_.get(), state_->find(name, true));
+}
+Output Simulation::output(std::string_view name) {
+  return Output(state_.get(), state_->find(name, false));
+}
+
+void Simulation::step() {
+  state_->step();
+}
+
+void Simulation::advance(double seconds) {
+  const long steps = std::lround(seconds / state_->m->opt.timestep);
+  for (long k = 0; k < steps; ++k) state_->step();
+}
+
+double Simulation::time() const {
+  return state_->d->time;
+}
+double Simulation::timestep() const {
+  return state_->m->opt.timestep;
+}
+const mjModel* Simulation::model() const {
+  return state_->m;
+}
+mjData* Simulation::data() {
+  return state_->d;
+}
+const std::string& Simulation::root_model() const {
+  return state_->root;
+}
+const std::string& Simulation::mjcf() const {
+  return state_->xml;
+}
+const std::vector<std::string>& Simulation::warnings() const {
+  return state_->warnings;
+}
+
+std::vector<SignalInfo> Simulation::inputs() const {
+  std::vector<SignalInfo> out;
+  for (const ResolvedSignal& s : state_->signals) {
+    if (s.binding.input) out.push_back(s.info);
+  }
+  return out;
+}
+
+std::vector<SignalInfo> Simulation::outputs() const {
+  std::vector<SignalInfo> out;
+  for (const ResolvedSignal& s : state_->signals) {
+    if (!s.binding.input) out.push_back(s.info);
+  }
+  return out;
+}
+
+void Input::set(double value) {
+  state_->write(index_, &value, 1, ValueType::Real);
+}
+void Input::set(bool value) {
+  const double v = value ? 1.0 : 0.0;
+  state_->write(index_, &v, 1, ValueType::Bool);
+}
+void Input::set(const Eigen::Vector2d& value) {
+  state_->write(index_, value.data(), 2, ValueType::Vec2);
+}
+void Input::set(const Eigen::Vector3d& value) {
+  state_->write(index_, value.data(), 3, ValueType::Vec3);
+}
+const SignalInfo& Input::info() const {
+  return state_->signals[static_cast<size_t>(index_)].info;
+}
+
+double Output::real() const {
+  double v = 0;
+  state_->read(index_, &v, 1, ValueType::Real);
+  return v;
+}
+bool Output::boolean() const {
+  double v = 0;
+  state_->read(index_, &v, 1, ValueType::Bool);
+  return v != 0;
+}
+Eigen::Vector2d Output::vec2() const {
+  Eigen::Vector2d v;
+  state_->read(index_, v.data(), 2, ValueType::Vec2);
+  return v;
+}
+Eigen::Vector3d Output::vec3() const {
+  Eigen::Vector3d v;
+  state_->read(index_, v.data(), 3, ValueType::Vec3);
+  return v;
+}
+const SignalInfo& Output::info() const {
+  return state_->signals[static_cast<size_t>(index_)].info;
+}
+
+}  // namespace openplx::runtime

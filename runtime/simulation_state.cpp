@@ -1,0 +1,343 @@
+#include "runtime/simulation_state.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "runtime/name_suggestions.h"
+#include "runtime/rotation.h"
+
+namespace openplx::runtime {
+
+using mjcf::MjObject;
+using mjcf::Quantity;
+
+namespace {
+
+mjtObj object_type(MjObject object) {
+  switch (object) {
+    case MjObject::Actuator:
+      return mjOBJ_ACTUATOR;
+    case MjObject::Joint:
+      return mjOBJ_JOINT;
+    case MjObject::Body:
+      return mjOBJ_BODY;
+    case MjObject::Site:
+      return mjOBJ_SITE;
+    case MjObject::Equality:
+      return mjOBJ_EQUALITY;
+    case MjObject::None:
+      break;
+  }
+  return mjOBJ_UNKNOWN;
+}
+
+ValueType value_type(mjcf::SignalValue value) {
+  switch (value) {
+    case mjcf::SignalValue::Real:
+      return ValueType::Real;
+    case mjcf::SignalValue::Bool:
+      return ValueType::Bool;
+    case mjcf::SignalValue::Int:
+      return ValueType::Int;
+    case mjcf::SignalValue::Vec2:
+      return ValueType::Vec2;
+    case mjcf::SignalValue::Vec3:
+      return ValueType::Vec3;
+  }
+  return ValueType::Real;
+}
+
+std::string_view type_name(ValueType type) {
+  switch (type) {
+    case ValueType::Real:
+      return "a Real";
+    case ValueType::Bool:
+      return "a Bool";
+    case ValueType::Int:
+      return "an Int";
+    case ValueType::Vec2:
+      return "a Vec2";
+    case ValueType::Vec3:
+      return "a Vec3";
+  }
+  return "a value";
+}
+
+std::string describe(const mjcf::SignalBinding& b) {
+  if (b.quantity == Quantity::None) return "not mapped: " + b.reason;
+  std::string text(to_string(b.object));
+  for (const std::string& name : b.names) text += " " + name;
+  return text + ": " + std::string(to_string(b.quantity));
+}
+
+Eigen::Vector3d vec(const mjtNum* v) {
+  return {v[0], v[1], v[2]};
+}
+
+// World linear velocity of a body frame or site origin: mj_objectVelocity gives (angular, linear).
+Eigen::Vector3d linear_velocity(const mjModel* m, const mjData* d, int type, int id) {
+  mjtNum v[6];
+  mj_objectVelocity(m, d, type, id, v, 0);
+  return vec(v + 3);
+}
+Eigen::Vector3d angular_velocity(const mjModel* m, const mjData* d, int type, int id) {
+  mjtNum v[6];
+  mj_objectVelocity(m, d, type, id, v, 0);
+  return vec(v);
+}
+
+}  // namespace
+
+SimulationState::~SimulationState() {
+  if (d) mj_deleteData(d);
+  if (m) mj_deleteModel(m);
+}
+
+void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
+  kinematic_linear.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
+  kinematic_angular.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
+  for (mjcf::SignalBinding& b : bindings) {
+    ResolvedSignal s;
+    s.info.name = b.path;
+    s.info.type = b.type;
+    s.info.value = value_type(b.value);
+    s.info.unit = b.unit;
+    s.info.enabled = b.enabled;
+    s.info.mapped = b.quantity != Quantity::None;
+    s.info.mujoco = describe(b);
+    for (const std::string& name : b.names) {
+      const int id = mj_name2id(m, object_type(b.object), name.c_str());
+      if (id < 0) {  // the emitter promised it: a mismatch is a bug, so the signal is refused, not misread
+        s.info.mapped = false;
+        s.info.mujoco = "not mapped: MuJoCo has no " + std::string(to_string(b.object)) + " named " + name;
+        b.quantity = Quantity::None;
+        b.reason = s.info.mujoco;
+      }
+      s.ids.push_back(id);
+    }
+    if (!b.sensor.empty()) s.sensor = mj_name2id(m, mjOBJ_SENSOR, b.sensor.c_str());
+    if (b.quantity != Quantity::None && !s.ids.empty()) {
+      const int id = s.ids.front();
+      if (b.object == MjObject::Joint) {
+        s.address = m->jnt_qposadr[id];
+        s.dof = m->jnt_dofadr[id];
+      } else if (b.object == MjObject::Body) {
+        s.address = m->body_mocapid[id];
+      }
+      if (b.quantity == Quantity::Ctrl && b.input) d->ctrl[id] = b.initial;  // MJCF has no initial control
+    }
+    s.binding = std::move(b);
+    if (s.binding.quantity == Quantity::JointLimitForce)
+      limit_signals.push_back(static_cast<int>(signals.size()));
+    by_name.emplace(s.info.name, static_cast<int>(signals.size()));
+    signals.push_back(std::move(s));
+  }
+  limit_forces.assign(signals.size(), 0.0);
+}
+
+int SimulationState::find(std::string_view name, bool input) const {
+  auto lookup = [&](std::string_view key) {
+    auto it = by_name.find(std::string(key));
+    return it != by_name.end() && signals[it->second].binding.input == input ? it->second : -1;
+  };
+  int index = lookup(name);
+  if (index < 0 && name.size() > root.size() + 1 && name.substr(0, root.size()) == root &&
+      name[root.size()] == '.') {
+    index = lookup(name.substr(root.size() + 1));
+  }
+  if (index >= 0) return index;
+  std::vector<std::string> candidates;
+  for (const ResolvedSignal& s : signals) {
+    if (s.binding.input == input) candidates.push_back(s.info.name);
+  }
+  throw SignalError(std::string(input ? "no input" : "no output") + " named `" + std::string(name) + "`" +
+                    suggestion_text(name, candidates));
+}
+
+void SimulationState::step() {
+  // mj_step = mj_step1 + mj_step2 under Euler. Running step1 of the next state right after step2 leaves
+  // positions and velocities (and the outputs computed from them) current after every step, at no extra cost.
+  if (stale) {
+    mj_step1(m, d);
+    stale = false;
+  }
+  mj_step2(m, d);
+  cache_limit_forces();
+  if (kinematic) {
+    const mjtNum h = m->opt.timestep;
+    for (int k = 0; k < m->nmocap; ++k) {
+      const Eigen::Vector3d& v = kinematic_linear[static_cast<size_t>(k)];
+      const Eigen::Vector3d& w = kinematic_angular[static_cast<size_t>(k)];
+      for (int i = 0; i < 3; ++i) d->mocap_pos[3 * k + i] += h * v[i];
+      if (!w.isZero()) {
+        mjtNum local[3], world[3] = {w.x(), w.y(), w.z()}, r[9];
+        mju_quat2Mat(r, d->mocap_quat + 4 * k);
+        mju_mulMatTVec(local, r, world, 3, 3);  // mju_quatIntegrate turns about body axes
+        mju_quatIntegrate(d->mocap_quat + 4 * k, local, h);
+      }
+    }
+  }
+  mj_step1(m, d);
+}
+
+// Constraint forces belong to the rows mj_step1 builds; the next mj_step1 rebuilds the rows, so the forces
+// of the step just taken are kept here first.
+void SimulationState::cache_limit_forces() {
+  for (int index : limit_signals) {
+    const int joint = signals[static_cast<size_t>(index)].ids.front();
+    double total = 0;
+    for (int r = 0; r < d->nefc; ++r) {
+      if (d->efc_type[r] == mjCNSTR_LIMIT_JOINT && d->efc_id[r] == joint) total += d->efc_force[r];
+    }
+    limit_forces[static_cast<size_t>(index)] = total;
+  }
+}
+
+void SimulationState::write(int index, const double* values, int count, ValueType given) {
+  ResolvedSignal& s = signals[static_cast<size_t>(index)];
+  const mjcf::SignalBinding& b = s.binding;
+  const bool fits = s.info.value == given || (s.info.value == ValueType::Int && given == ValueType::Real &&
+                                              std::floor(values[0]) == values[0]);
+  if (!fits) {
+    throw SignalError("input `" + s.info.name + "` takes " + std::string(type_name(s.info.value)) + ", not " +
+                      std::string(type_name(given)));
+  }
+  for (int i = 0; i < count; ++i) {
+    if (!std::isfinite(values[i])) throw SignalError("input `" + s.info.name + "` got a non-finite value");
+  }
+  const int id = s.ids.empty() ? -1 : s.ids.front();
+  switch (b.quantity) {
+    case Quantity::Ctrl:
+      d->ctrl[id] = values[0];
+      return;
+    case Quantity::ForceRange:
+      if (values[0] > values[1]) {
+        throw SignalError("input `" + s.info.name + "` got a range whose minimum exceeds its maximum");
+      }
+      m->actuator_forcerange[2 * id] = values[0];
+      m->actuator_forcerange[2 * id + 1] = values[1];
+      return;
+    case Quantity::EqualityActive:
+      for (int e : s.ids) m->eq_active[e] = values[0] != 0;
+      stale = true;  // constraint rows are built in mj_step1
+      return;
+    case Quantity::SpringRest:
+      m->qpos_spring[s.address] = values[0];
+      stale = true;  // passive forces are computed in mj_step1
+      return;
+    case Quantity::KinematicLinearVelocity:
+    case Quantity::KinematicAngularVelocity: {
+      auto& target = b.quantity == Quantity::KinematicLinearVelocity ? kinematic_linear : kinematic_angular;
+      target[static_cast<size_t>(s.address)] = Eigen::Vector3d(values[0], values[1], values[2]);
+      kinematic = true;
+      return;
+    }
+    case Quantity::FreeLinearVelocity:
+      for (int i = 0; i < 3; ++i) d->qvel[s.dof + i] = values[i];
+      stale = true;
+      return;
+    case Quantity::FreeAngularVelocity: {
+      mjtNum r[9], world[3] = {values[0], values[1], values[2]};
+      mju_quat2Mat(r, d->xquat + 4 * m->jnt_bodyid[id]);
+      mju_mulMatTVec(d->qvel + s.dof + 3, r, world, 3, 3);  // MuJoCo keeps it in body axes
+      stale = true;
+      return;
+    }
+    default:
+      throw SignalError("input `" + s.info.name + "` has no MuJoCo counterpart: " + b.reason);
+  }
+}
+
+void SimulationState::read(int index, double* out, int count, ValueType wanted) const {
+  const ResolvedSignal& s = signals[static_cast<size_t>(index)];
+  const mjcf::SignalBinding& b = s.binding;
+  const bool fits = s.info.value == wanted || (wanted == ValueType::Real && s.info.value == ValueType::Int);
+  if (!fits) {
+    throw SignalError("output `" + s.info.name + "` is " + std::string(type_name(s.info.value)) + ", not " +
+                      std::string(type_name(wanted)));
+  }
+  const int id = s.ids.empty() ? -1 : s.ids.front();
+  auto put = [&](const Eigen::Vector3d& v) {
+    for (int i = 0; i < count && i < 3; ++i) out[i] = v[i];
+  };
+  auto from_sensor = [&](const char* what) {
+    if (s.sensor < 0) {
+      throw SignalError(
+          "output `" + s.info.name + "` is " + what +
+          ", which MuJoCo measures only with a sensor: enable it in the model (`enabled: true`)");
+    }
+    return d->sensordata + m->sensor_adr[s.sensor];
+  };
+  switch (b.quantity) {
+    case Quantity::Ctrl:
+      out[0] = d->ctrl[id];
+      return;
+    case Quantity::ForceRange:
+      out[0] = m->actuator_forcerange[2 * id];
+      out[1] = m->actuator_forcerange[2 * id + 1];
+      return;
+    case Quantity::EqualityActive:
+      out[0] = m->eq_active[id] ? 1 : 0;
+      return;
+    case Quantity::SpringRest:
+      out[0] = m->qpos_spring[s.address];
+      return;
+    case Quantity::JointPosition:
+      out[0] = b.sign * d->qpos[s.address];
+      return;
+    case Quantity::JointVelocity:
+      out[0] = b.sign * d->qvel[s.dof];
+      return;
+    case Quantity::ActuatorForce:
+      out[0] = d->actuator_force[id];
+      return;
+    case Quantity::SpringForce:
+      out[0] = b.gain * (d->qpos[s.address] - b.offset);
+      return;
+    case Quantity::JointLimitForce:
+      out[0] = limit_forces[static_cast<size_t>(index)];
+      return;
+    case Quantity::BodyPosition:
+      put(vec(d->xpos + 3 * id));
+      return;
+    case Quantity::BodyRPY:
+      put(rpy_from_quat(d->xquat + 4 * id));
+      return;
+    case Quantity::BodyLinearVelocity:
+      put(linear_velocity(m, d, mjOBJ_XBODY, id));
+      return;
+    case Quantity::BodyAngularVelocity:
+      put(angular_velocity(m, d, mjOBJ_XBODY, id));
+      return;
+    case Quantity::BodyLinearAcceleration:
+      put(vec(from_sensor("an acceleration")));
+      return;
+    case Quantity::SitePosition:
+      put(vec(d->site_xpos + 3 * id));
+      return;
+    case Quantity::SiteRPY:
+      put(rpy_from_matrix(d->site_xmat + 9 * id));
+      return;
+    case Quantity::SiteLinearVelocity:
+      put(linear_velocity(m, d, mjOBJ_SITE, id));
+      return;
+    case Quantity::SiteAngularVelocity:
+      put(angular_velocity(m, d, mjOBJ_SITE, id));
+      return;
+    case Quantity::MateForce:
+    case Quantity::MateTorque: {
+      const mjtNum* local = from_sensor("a mate force");  // site axes; turn into world axes
+      mjtNum world[3];
+      mju_mulMatVec(world, d->site_xmat + 9 * id, local, 3, 3);
+      put(b.sign * vec(world));
+      return;
+    }
+    case Quantity::Constant:
+      out[0] = b.initial;
+      return;
+    default:
+      throw SignalError("output `" + s.info.name + "` has no MuJoCo counterpart: " + b.reason);
+  }
+}
+
+}  // namespace openplx::runtime

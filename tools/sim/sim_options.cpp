@@ -1,0 +1,141 @@
+#include "tools/sim/sim_options.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace openplx::sim {
+namespace {
+
+std::optional<double> parse_number(const std::string& text) {
+  const char* begin = text.c_str();
+  while (*begin == ' ') ++begin;
+  char* end = nullptr;
+  const double value = std::strtod(begin, &end);
+  if (end == begin) return std::nullopt;
+  while (*end == ' ') ++end;
+  if (*end != '\0' || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// "NAME=VALUE"
+std::optional<Assignment> parse_assignment(const std::string& text, std::string& error) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    error = "expected NAME=VALUE, got '" + text + "'";
+    return std::nullopt;
+  }
+  std::optional<SignalValue> value = parse_signal_value(text.substr(eq + 1));
+  if (!value) {
+    error = "'" + text.substr(eq + 1) + "' is not a number, true/false, {a, b} or {x, y, z}";
+    return std::nullopt;
+  }
+  return Assignment{0.0, text.substr(0, eq), *value};
+}
+
+}  // namespace
+
+std::optional<SignalValue> parse_signal_value(const std::string& text) {
+  if (text == "true" || text == "false") return SignalValue{{text == "true" ? 1.0 : 0.0}, true};
+  if (!text.empty() && text.front() == '{' && text.back() == '}') {
+    SignalValue value;
+    std::stringstream parts(text.substr(1, text.size() - 2));
+    std::string part;
+    while (std::getline(parts, part, ',')) {
+      std::optional<double> number = parse_number(part);
+      if (!number) return std::nullopt;
+      value.numbers.push_back(*number);
+    }
+    if (value.numbers.size() != 2 && value.numbers.size() != 3) return std::nullopt;
+    return value;
+  }
+  if (std::optional<double> number = parse_number(text)) return SignalValue{{*number}, false};
+  return std::nullopt;
+}
+
+std::string sim_usage() {
+  return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--set NAME=VALUE]...\n"
+         "                   [--at T NAME=VALUE]... [--print NAME]... [--csv FILE] [--list]\n"
+         "Runs an OpenPLX model headless in MuJoCo. VALUE is a number, true/false, {a, b} or {x, y, z}.\n"
+         "  --time T         simulated seconds (default 1)\n"
+         "  --set NAME=V     set an input before the first step\n"
+         "  --at T NAME=V    set an input once the simulated time reaches T\n"
+         "  --print NAME     print an output's final value as `NAME = value`\n"
+         "  --csv FILE       write the time series of the printed outputs\n"
+         "  --list           list inputs and outputs with their types and MuJoCo elements\n";
+}
+
+std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args, std::string& error) {
+  SimOptions options;
+  std::vector<Assignment> timed;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&](size_t count = 1) -> bool {
+      if (i + count >= args.size()) {
+        error = "option " + arg + " needs " + (count == 1 ? "a value" : "two values");
+        return false;
+      }
+      return true;
+    };
+    if (arg == "--help" || arg == "-h") {
+      options.help = true;
+    } else if (arg == "--list") {
+      options.list = true;
+    } else if (arg == "--model") {
+      if (!value()) return std::nullopt;
+      options.model = args[++i];
+    } else if (arg == "-B" || arg == "--bundle-path") {
+      if (!value()) return std::nullopt;
+      options.bundle_dirs.push_back(args[++i]);
+    } else if (arg == "--time") {
+      if (!value()) return std::nullopt;
+      std::optional<double> t = parse_number(args[++i]);
+      if (!t || *t < 0) {
+        error = "--time needs a non-negative number, got '" + args[i] + "'";
+        return std::nullopt;
+      }
+      options.time = *t;
+    } else if (arg == "--set") {
+      if (!value()) return std::nullopt;
+      std::optional<Assignment> a = parse_assignment(args[++i], error);
+      if (!a) return std::nullopt;
+      options.assignments.push_back(*a);
+    } else if (arg == "--at") {
+      if (!value(2)) return std::nullopt;
+      std::optional<double> t = parse_number(args[++i]);
+      if (!t || *t < 0) {
+        error = "--at needs a non-negative time, got '" + args[i] + "'";
+        return std::nullopt;
+      }
+      std::optional<Assignment> a = parse_assignment(args[++i], error);
+      if (!a) return std::nullopt;
+      a->time = *t;
+      timed.push_back(*a);
+    } else if (arg == "--print") {
+      if (!value()) return std::nullopt;
+      options.prints.push_back(args[++i]);
+    } else if (arg == "--csv") {
+      if (!value()) return std::nullopt;
+      options.csv = args[++i];
+    } else if (!arg.empty() && arg[0] == '-') {
+      error = "unknown option '" + arg + "'";
+      return std::nullopt;
+    } else if (options.input.empty()) {
+      options.input = arg;
+    } else {
+      error = "more than one input file ('" + options.input + "' and '" + arg + "')";
+      return std::nullopt;
+    }
+  }
+  if (!options.help && options.input.empty()) {
+    error = "no input file";
+    return std::nullopt;
+  }
+  std::stable_sort(timed.begin(), timed.end(),
+                   [](const Assignment& a, const Assignment& b) { return a.time < b.time; });
+  options.assignments.insert(options.assignments.end(), timed.begin(), timed.end());
+  return options;
+}
+
+}  // namespace openplx::sim

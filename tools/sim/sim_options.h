@@ -1,0 +1,42 @@
+// The `openplx-sim` command line:
+//   openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--set NAME=VALUE]... [--at T NAME=VALUE]...
+//               [--print NAME]... [--csv FILE] [--list]
+// VALUE is a number, true/false, {a, b} or {x, y, z}.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace openplx::sim {
+
+struct SignalValue {
+  std::vector<double> numbers;  // 1, 2 or 3 numbers
+  bool is_bool = false;
+};
+
+struct Assignment {
+  double time = 0.0;  // --set: 0
+  std::string name;
+  SignalValue value;
+};
+
+struct SimOptions {
+  std::string input;
+  std::string model;
+  std::vector<std::string> bundle_dirs;
+  double time = 1.0;
+  std::vector<Assignment> assignments;  // --set then --at, in the order given
+  std::vector<std::string> prints;
+  std::string csv;
+  bool list = false;
+  bool help = false;
+};
+
+// Parses argv[1..]; nullopt and `error` on a usage error.
+std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args, std::string& error);
+// "1.5", "true", "{1, 2}", "{1, 2, 3}"; nullopt when it is none of them.
+std::optional<SignalValue> parse_signal_value(const std::string& text);
+std::string sim_usage();
+
+}  // namespace openplx::sim
