@@ -1,0 +1,141 @@
+// The runtime's public contract: name lookup and its errors, value checks that leave the state untouched,
+// load errors with locations, and the signal kinds beyond motors (kinematic bodies, free bodies, springs).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "openplx/runtime/simulation.h"
+
+namespace {
+
+namespace rt = openplx::runtime;
+namespace fs = std::filesystem;
+
+std::string write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "openplx_runtime_api_test";
+  fs::create_directories(dir);
+  const fs::path path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string corpus(const std::string& file) {
+  return (fs::path(OPENPLX_CORPUS_DIR) / "agxunity" / file).string();
+}
+
+const char* kCart =
+    "Cart is Physics3D.Bodies.RigidBody:\n"
+    "    is_dynamic: false\n"
+    "    geometry is Physics3D.Geometries.Box:\n"
+    "        size: {0.4, 0.2, 0.1}\n"
+    "    pivot is Physics3D.Interactions.MateConnector:\n"
+    "        main_axis: Math.Vec3.Y_AXIS()\n"
+    "        normal: Math.Vec3.Z_AXIS()\n"
+    "Ball is Physics3D.Bodies.RigidBody:\n"
+    "    inertia.mass: 1\n"
+    "    geometry is Physics3D.Geometries.Sphere:\n"
+    "        radius: 0.1\n"
+    "    top is Physics3D.Interactions.MateConnector:\n"
+    "        position.z: 0.5\n"
+    "        main_axis: Math.Vec3.Y_AXIS()\n"
+    "        normal: Math.Vec3.Z_AXIS()\n"
+    "Stone is Physics3D.Bodies.RigidBody:\n"
+    "    inertia.mass: 2\n"
+    "    geometry is Physics3D.Geometries.Sphere:\n"
+    "        radius: 0.05\n"
+    "Scene is Physics3D.System:\n"
+    "    cart is Cart\n"
+    "    ball is Ball\n"
+    "    stone is Stone:\n"
+    "        kinematics.local_transform.position: {5, 0, 0}\n"
+    "    hinge is Physics3D.Interactions.Hinge:\n"
+    "        connectors: [cart.pivot, ball.top]\n"
+    "        angle_output.enabled: true\n";
+
+TEST(RuntimeApi, UnknownNamesListCloseOnes) {
+  rt::Simulation sim = rt::Simulation::load(corpus("signal_test.openplx"));
+  try {
+    sim.input("motorSpeedInptu");
+    FAIL() << "no exception";
+  } catch (const rt::SignalError& e) {
+    EXPECT_EQ(std::string(e.what()), "no input named `motorSpeedInptu`; did you mean `motorSpeedInput`?");
+  }
+  EXPECT_THROW(sim.output("motorSpeedInput"), rt::SignalError);  // an input is not an output
+  EXPECT_NO_THROW(sim.output("SignalScene.angularVelocity"));
+  EXPECT_EQ(sim.root_model(), "SignalScene");
+}
+
+TEST(RuntimeApi, BadValuesAreRejectedAndLeaveTheStateAlone) {
+  rt::Simulation sim = rt::Simulation::load(corpus("torque_range.openplx"));
+  rt::Input speed = sim.input("pendulum.motor.target_angular_velocity_input");
+  rt::Input range = sim.input("pendulum.motor.torque_range_input");
+  const int motor = mj_name2id(sim.model(), mjOBJ_ACTUATOR, "pendulum.motor");
+  EXPECT_EQ(sim.data()->ctrl[motor], 1.0);  // target_speed: 1, set before the first step
+  EXPECT_THROW(speed.set(std::nan("")), rt::SignalError);
+  EXPECT_THROW(speed.set(INFINITY), rt::SignalError);
+  EXPECT_THROW(speed.set(true), rt::SignalError);
+  EXPECT_THROW(speed.set(Eigen::Vector3d(1, 2, 3)), rt::SignalError);
+  EXPECT_THROW(range.set(2.0), rt::SignalError);
+  EXPECT_THROW(range.set(Eigen::Vector2d(1, -1)), rt::SignalError);  // min above max
+  try {
+    speed.set(true);
+  } catch (const rt::SignalError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "input `pendulum.motor.target_angular_velocity_input` takes a Real, not a Bool");
+  }
+  EXPECT_EQ(sim.data()->ctrl[motor], 1.0);
+  EXPECT_EQ(sim.model()->actuator_forcerange[2 * motor + 1], 1e10);
+  EXPECT_THROW(sim.output("pendulum.hinge.angle_output").vec3(), rt::SignalError);
+  EXPECT_THROW(sim.input("pendulum.hinge.enable_interaction_input").set(false), rt::SignalError);
+}
+
+TEST(RuntimeApi, LoadErrorsCarryTheirLocation) {
+  const std::string path = write("broken.openplx", "Scene is Physics3D.System:\n    x is Real: 1 +\n");
+  try {
+    rt::Simulation::load(path);
+    FAIL() << "no exception";
+  } catch (const rt::LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ":2:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(": error: "), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(rt::Simulation::load(write("missing_model.openplx", "A is Physics3D.System\n"), {"Nope", {}}),
+               rt::LoadError);
+}
+
+// A kinematic cart (is_dynamic: false) follows its velocity input exactly, and what hangs from it comes
+// along; a free body takes its velocity input as its initial velocity and then falls under gravity.
+TEST(RuntimeApi, KinematicAndFreeBodiesTakeVelocityInputs) {
+  rt::Simulation sim = rt::Simulation::load(write("cart.openplx", kCart));
+  sim.input("cart.linear_velocity_world_input").set(Eigen::Vector3d(0.5, 0, 0));
+  sim.input("cart.angular_velocity_world_input").set(Eigen::Vector3d(0, 0, 0.25));
+  sim.input("stone.linear_velocity_world_input").set(Eigen::Vector3d(0, 0, 3));
+  rt::Output cart = sim.output("cart.position_output");
+  rt::Output stone = sim.output("stone.linear_velocity_world_output");
+  sim.advance(1.0);
+  EXPECT_NEAR(cart.vec3().x(), 0.5, 1e-12);
+  const int cart_body = mj_name2id(sim.model(), mjOBJ_BODY, "cart");
+  const mjtNum* q = sim.data()->xquat + 4 * cart_body;  // a turn about z by 0.25 rad
+  EXPECT_NEAR(2 * std::atan2(q[3], q[0]), 0.25, 1e-9);
+  const int ball = mj_name2id(sim.model(), mjOBJ_BODY, "ball");
+  EXPECT_GT(sim.data()->xpos[3 * ball], 0.3);  // carried along (it swings behind the cart)
+  // v = 3 - g t with explicit Euler's velocity update: exact for constant gravity.
+  EXPECT_NEAR(stone.vec3().z(), 3 - 9.81 * 1.0, 1e-9);
+}
+
+TEST(RuntimeApi, ListsSignalsWithTypesAndMuJoCoElements) {
+  rt::Simulation sim = rt::Simulation::load(corpus("signal_test.openplx"));
+  bool found = false;
+  for (const rt::SignalInfo& s : sim.inputs()) {
+    if (s.name != "motorSpeedInput") continue;
+    found = true;
+    EXPECT_EQ(s.value, rt::ValueType::Real);
+    EXPECT_EQ(s.unit, "rad/s");
+    EXPECT_TRUE(s.mapped);
+    EXPECT_EQ(s.mujoco, "actuator motor: ctrl");
+  }
+  EXPECT_TRUE(found);
+  EXPECT_EQ(sim.outputs().size() + sim.inputs().size(), 21u);  // every signal of the model, mapped or not
+}
+
+}  // namespace

@@ -1,0 +1,122 @@
+// The corpus behaviours of ../shared/corpus/README.md, driven through the public runtime API as a user's
+// controller would: inputs by OpenPLX name before a step, outputs by name after it.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+
+#include "openplx/runtime/simulation.h"
+
+namespace {
+
+namespace rt = openplx::runtime;
+namespace fs = std::filesystem;
+
+std::string corpus(const std::string& file) {
+  return (fs::path(OPENPLX_CORPUS_DIR) / "agxunity" / file).string();
+}
+
+Eigen::Vector3d world_position(rt::Simulation& sim, const char* body) {
+  const int id = mj_name2id(sim.model(), mjOBJ_BODY, body);
+  EXPECT_GE(id, 0) << body;
+  return Eigen::Map<const Eigen::Vector3d>(sim.data()->xpos + 3 * id);
+}
+
+// signal_test: the velocity motor follows motorSpeedInput within 0.2 s, to 1e-6 (the motor's kv is capped at
+// half of Euler's stability limit, so the speed error halves every step: 100 steps leave 1e-30).
+TEST(RuntimeBehaviour, SignalTestMotorTracksItsSpeedInput) {
+  rt::Simulation sim = rt::Simulation::load(corpus("signal_test.openplx"));
+  rt::Input speed = sim.input("motorSpeedInput");
+  rt::Output velocity = sim.output("angularVelocity");
+  rt::Output rpy = sim.output("boxRPY");
+  speed.set(1.0);
+  sim.advance(0.2);
+  EXPECT_NEAR(velocity.real(), 1.0, 1e-6);
+  speed.set(-1.0);
+  sim.advance(0.2);
+  EXPECT_NEAR(velocity.real(), -1.0, 1e-6);
+  // boxRPY is the box's world rotation as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
+  const Eigen::Vector3d a = rpy.vec3();
+  const Eigen::Matrix3d r = (Eigen::AngleAxisd(a.z(), Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(a.y(), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(a.x(), Eigen::Vector3d::UnitX()))
+                                .toRotationMatrix();
+  const int box = mj_name2id(sim.model(), mjOBJ_BODY, "box");
+  const mjtNum* q = sim.data()->xquat + 4 * box;
+  const Eigen::Matrix3d expected = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+  EXPECT_LT((r - expected).norm(), 1e-12);
+  EXPECT_GT(std::abs(a.z()), 1e-3);  // it turned about z, so this compares something
+}
+
+// torque_range: the range input bounds the motor's torque from the next step on, and the range output reads
+// it.
+TEST(RuntimeBehaviour, TorqueRangeBoundsTheMotor) {
+  rt::Simulation sim = rt::Simulation::load(corpus("torque_range.openplx"));
+  rt::Output torque = sim.output("pendulum.motor.torque_output");
+  rt::Output range_out = sim.output("pendulum.motor.torque_range_output");
+  rt::Input range = sim.input("pendulum.motor.torque_range_input");
+  sim.step();
+  EXPECT_GT(std::abs(torque.real()), 2.0);
+  range.set(Eigen::Vector2d(-1, 1));
+  sim.step();
+  EXPECT_LE(std::abs(torque.real()), 1.0);
+  EXPECT_EQ(range_out.vec2(), Eigen::Vector2d(-1, 1));
+  range.set(Eigen::Vector2d(2, 3));
+  sim.step();
+  EXPECT_EQ(range_out.vec2(), Eigen::Vector2d(2, 3));
+  EXPECT_GE(torque.real(), 2.0);
+  EXPECT_LE(torque.real(), 3.0);
+}
+
+// simpler_inverted_pendulum: a 10000 N push along +x at the rod-local point (0, 0, 1) for one step, then the
+// corpus controller (motor speed = 5 (0 - a) - 0.2 w) brings the hinge back to 0 within 0.1 degree in 2 s.
+TEST(RuntimeBehaviour, InvertedPendulumControllerRecoversFromAPush) {
+  rt::Simulation sim = rt::Simulation::load(corpus("simpler_inverted_pendulum.openplx"));
+  rt::Input motor = sim.input("PendulumScene.motor_input");  // the root model's name may lead
+  rt::Output angle = sim.output("hinge_angle_output");
+  rt::Output rate = sim.output("hinge_angular_velocity_output");
+  const int rod = mj_name2id(sim.model(), mjOBJ_BODY, "rod");
+  mjData* d = sim.data();
+  double largest = 0;
+  for (int k = 0; sim.time() < 2.0 - 1e-9; ++k) {
+    motor.set(5.0 * (0.0 - angle.real()) - 0.2 * rate.real());
+    for (int i = 0; i < 6; ++i) d->xfrc_applied[6 * rod + i] = 0;
+    if (k == 0) {
+      // Force at the COM plus the torque of moving it to the point (world axes).
+      const mjtNum* r = d->xmat + 9 * rod;
+      const Eigen::Vector3d point =
+          Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * rod) +
+          Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r) * Eigen::Vector3d(0, 0, 1);
+      const Eigen::Vector3d force(10000, 0, 0);
+      const Eigen::Vector3d torque =
+          (point - Eigen::Map<const Eigen::Vector3d>(d->xipos + 3 * rod)).cross(force);
+      for (int i = 0; i < 3; ++i) {
+        d->xfrc_applied[6 * rod + i] = force[i];
+        d->xfrc_applied[6 * rod + 3 + i] = torque[i];
+      }
+    }
+    sim.step();
+    largest = std::max(largest, std::abs(angle.real()));
+  }
+  EXPECT_GT(largest, 10 * 0.1 * M_PI / 180);  // the push moved it ten times farther than the tolerance
+  EXPECT_NEAR(angle.real(), 0.0, 0.1 * M_PI / 180);
+}
+
+// LinearSpringTest and LinearRangeTest: the falling rod rests on its spring / range end after 2 s.
+TEST(RuntimeBehaviour, FallingRodRestsOnSpringAndOnRange) {
+  for (const auto& [file, z] :
+       {std::pair{"LinearSpringTest.openplx", -0.5}, {"LinearRangeTest.openplx", -1.0}}) {
+    SCOPED_TRACE(file);
+    rt::Simulation sim = rt::Simulation::load(corpus(file));
+    rt::Output position = sim.output("falling_rod.rod1.position_output");
+    rt::Output velocity = sim.output("falling_rod.rod1.linear_velocity_world_output");
+    sim.advance(2.0);
+    EXPECT_NEAR(sim.time(), 2.0, 1e-9);
+    EXPECT_NEAR(position.vec3().z(), z, 1e-3);
+    EXPECT_NEAR(velocity.vec3().z(), 0.0, 1e-3);
+    EXPECT_EQ(position.vec3(), world_position(sim, "falling_rod.rod1"));  // current after the step
+  }
+}
+
+}  // namespace
