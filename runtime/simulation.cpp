@@ -28,10 +28,13 @@ Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
 Input Simulation::input(std::string_view name) {
-  return Input(state_.get(), state_->find(name, true));
+  const int index = state_->find(name, true);
+  return Input(state_.get(), index, state_->signals[static_cast<size_t>(index)].direct);
 }
 Output Simulation::output(std::string_view name) {
-  return Output(state_.get(), state_->find(name, false));
+  const int index = state_->find(name, false);
+  const ResolvedSignal& s = state_->signals[static_cast<size_t>(index)];
+  return Output(state_.get(), index, s.direct, s.scale);
 }
 
 void Simulation::step() {
@@ -81,9 +84,7 @@ std::vector<SignalInfo> Simulation::outputs() const {
   return out;
 }
 
-void Input::set(double value) {
-  state_->write(index_, &value, 1, ValueType::Real);
-}
+void Input::set_checked(double value) { state_->write(index_, &value, 1, ValueType::Real); }
 void Input::set(bool value) {
   const double v = value ? 1.0 : 0.0;
   state_->write(index_, &v, 1, ValueType::Bool);
@@ -98,7 +99,7 @@ const SignalInfo& Input::info() const {
   return state_->signals[static_cast<size_t>(index_)].info;
 }
 
-double Output::real() const {
+double Output::real_checked() const {
   double v = 0;
   state_->read(index_, &v, 1, ValueType::Real);
   return v;

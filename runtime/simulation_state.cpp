@@ -1,5 +1,6 @@
 #include "runtime/simulation_state.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -74,16 +75,16 @@ Eigen::Vector3d vec(const mjtNum* v) {
   return {v[0], v[1], v[2]};
 }
 
-// World linear velocity of a body frame or site origin: mj_objectVelocity gives (angular, linear).
-Eigen::Vector3d linear_velocity(const mjModel* m, const mjData* d, int type, int id) {
-  mjtNum v[6];
-  mj_objectVelocity(m, d, type, id, v, 0);
-  return vec(v + 3);
+// World velocities of a point fixed in body `b`. MuJoCo's cvel holds (angular, linear) with the linear part
+// taken at the subtree centre of mass of b's root; moving it to the point is one cross product (cheaper than
+// mj_objectVelocity, which also rotates into a local frame).
+Eigen::Vector3d angular_velocity(const mjData* d, int b) {
+  return vec(d->cvel + 6 * b);
 }
-Eigen::Vector3d angular_velocity(const mjModel* m, const mjData* d, int type, int id) {
-  mjtNum v[6];
-  mj_objectVelocity(m, d, type, id, v, 0);
-  return vec(v);
+Eigen::Vector3d linear_velocity(const mjModel* m, const mjData* d, int b, const mjtNum* point) {
+  const Eigen::Vector3d w = vec(d->cvel + 6 * b), v = vec(d->cvel + 6 * b + 3);
+  const Eigen::Vector3d c = vec(d->subtree_com + 3 * m->body_rootid[b]);
+  return v + w.cross(vec(point) - c);
 }
 
 }  // namespace
@@ -125,6 +126,13 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
         s.address = m->body_mocapid[id];
       }
       if (b.quantity == Quantity::Ctrl && b.input) d->ctrl[id] = b.initial;  // MJCF has no initial control
+      if (s.info.value == ValueType::Real) {  // the inlined fast path of Input::set and Output::real
+        if (b.quantity == Quantity::Ctrl) s.direct = d->ctrl + id;
+        if (!b.input && b.quantity == Quantity::ActuatorForce) s.direct = d->actuator_force + id;
+        if (!b.input && b.quantity == Quantity::JointPosition) s.direct = d->qpos + s.address;
+        if (!b.input && b.quantity == Quantity::JointVelocity) s.direct = d->qvel + s.dof;
+        s.scale = b.sign;
+      }
     }
     s.binding = std::move(b);
     if (s.binding.quantity == Quantity::JointLimitForce)
@@ -304,10 +312,10 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       put(rpy_from_quat(d->xquat + 4 * id));
       return;
     case Quantity::BodyLinearVelocity:
-      put(linear_velocity(m, d, mjOBJ_XBODY, id));
+      put(linear_velocity(m, d, id, d->xpos + 3 * id));
       return;
     case Quantity::BodyAngularVelocity:
-      put(angular_velocity(m, d, mjOBJ_XBODY, id));
+      put(angular_velocity(d, id));
       return;
     case Quantity::BodyLinearAcceleration:
       put(vec(from_sensor("an acceleration")));
@@ -319,10 +327,10 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       put(rpy_from_matrix(d->site_xmat + 9 * id));
       return;
     case Quantity::SiteLinearVelocity:
-      put(linear_velocity(m, d, mjOBJ_SITE, id));
+      put(linear_velocity(m, d, m->site_bodyid[id], d->site_xpos + 3 * id));
       return;
     case Quantity::SiteAngularVelocity:
-      put(angular_velocity(m, d, mjOBJ_SITE, id));
+      put(angular_velocity(d, m->site_bodyid[id]));
       return;
     case Quantity::MateForce:
     case Quantity::MateTorque: {

@@ -21,6 +21,8 @@ struct ResolvedSignal {
   int sensor = -1;       // sensor id, -1 when none
   int address = -1;      // qpos address (joints), mocap index (kinematic bodies), dof address (free joints)
   int dof = -1;          // dof address (joints)
+  double* direct = nullptr;  // Real signals that are one mjData number: its address (value = scale * *direct)
+  double scale = 1.0;
 };
 
 struct SimulationState {
