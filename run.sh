@@ -15,3 +15,6 @@ build/tools/openplx2mjcf "$sample" -o "$out" --check
 cat "$out"
 echo "== mujoco-testspeed $out 5000   (MuJoCo simulates it headless)"
 mujoco-testspeed "$out" 5000 | grep -E "Simulation time|Steps per second|Degrees of freedom"
+echo "== openplx-sim samples/cart_pole.openplx   (the runtime drives it by OpenPLX signal names)"
+build/tools/openplx-sim samples/cart_pole.openplx --time 1 --set push=5 --at 0.5 push=-5 \
+  --print cart_position --print cart_speed --print pole_angle

@@ -34,7 +34,7 @@ Input Simulation::input(std::string_view name) {
 Output Simulation::output(std::string_view name) {
   const int index = state_->find(name, false);
   const ResolvedSignal& s = state_->signals[static_cast<size_t>(index)];
-  return Output(state_.get(), index, s.direct, s.scale);
+  return Output(state_.get(), index, s.direct, s.scale, s.direct3);
 }
 
 void Simulation::step() {
@@ -84,7 +84,9 @@ std::vector<SignalInfo> Simulation::outputs() const {
   return out;
 }
 
-void Input::set_checked(double value) { state_->write(index_, &value, 1, ValueType::Real); }
+void Input::set_checked(double value) {
+  state_->write(index_, &value, 1, ValueType::Real);
+}
 void Input::set(bool value) {
   const double v = value ? 1.0 : 0.0;
   state_->write(index_, &v, 1, ValueType::Bool);
@@ -114,7 +116,7 @@ Eigen::Vector2d Output::vec2() const {
   state_->read(index_, v.data(), 2, ValueType::Vec2);
   return v;
 }
-Eigen::Vector3d Output::vec3() const {
+Eigen::Vector3d Output::vec3_checked() const {
   Eigen::Vector3d v;
   state_->read(index_, v.data(), 3, ValueType::Vec3);
   return v;

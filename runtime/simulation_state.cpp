@@ -133,6 +133,12 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
         if (!b.input && b.quantity == Quantity::JointVelocity) s.direct = d->qvel + s.dof;
         s.scale = b.sign;
       }
+      if (!b.input && s.info.value == ValueType::Vec3) {  // the inlined fast path of Output::vec3
+        if (b.quantity == Quantity::BodyPosition) s.direct3 = d->xpos + 3 * id;
+        if (b.quantity == Quantity::SitePosition) s.direct3 = d->site_xpos + 3 * id;
+        if (b.quantity == Quantity::BodyAngularVelocity) s.direct3 = d->cvel + 6 * id;
+        if (b.quantity == Quantity::SiteAngularVelocity) s.direct3 = d->cvel + 6 * m->site_bodyid[id];
+      }
     }
     s.binding = std::move(b);
     if (s.binding.quantity == Quantity::JointLimitForce)

@@ -23,6 +23,7 @@ struct ResolvedSignal {
   int dof = -1;          // dof address (joints)
   double* direct = nullptr;  // Real signals that are one mjData number: its address (value = scale * *direct)
   double scale = 1.0;
+  const double* direct3 = nullptr;  // Vec3 outputs that are three consecutive mjData numbers
 };
 
 struct SimulationState {

@@ -87,18 +87,22 @@ class Output {
   double real() const { return direct_ ? scale_ * *direct_ : real_checked(); }
   bool boolean() const;
   Eigen::Vector2d vec2() const;
-  Eigen::Vector3d vec3() const;
+  Eigen::Vector3d vec3() const {
+    return direct3_ ? Eigen::Vector3d(direct3_[0], direct3_[1], direct3_[2]) : vec3_checked();
+  }
   const SignalInfo& info() const;
 
  private:
   friend class Simulation;
-  Output(SimulationState* state, int index, const double* direct, double scale)
-      : state_(state), index_(index), direct_(direct), scale_(scale) {}
+  Output(SimulationState* state, int index, const double* direct, double scale, const double* direct3)
+      : state_(state), index_(index), direct_(direct), scale_(scale), direct3_(direct3) {}
   double real_checked() const;
+  Eigen::Vector3d vec3_checked() const;
   SimulationState* state_;
   int index_;
   const double* direct_;  // a Real output that is one mjData number (times scale_), else null
   double scale_;
+  const double* direct3_;  // a Vec3 output that is three consecutive mjData numbers, else null
 };
 
 class Simulation {
