@@ -5,6 +5,7 @@
 #include <set>
 
 #include "frontend/deprecations.h"
+#include "frontend/edit_distance.h"
 #include "frontend/import_plugins.h"
 #include "frontend/parser.h"
 
@@ -20,21 +21,6 @@ std::string join(const std::vector<std::string_view>& parts, size_t count) {
     out += parts[i];
   }
   return out;
-}
-
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
 }
 
 }  // namespace

@@ -1,0 +1,11 @@
+// Levenshtein distance, for "did you mean" suggestions.
+#pragma once
+
+#include <cstddef>
+#include <string_view>
+
+namespace openplx::frontend {
+
+size_t edit_distance(std::string_view a, std::string_view b);
+
+}  // namespace openplx::frontend
