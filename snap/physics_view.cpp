@@ -25,12 +25,12 @@ class ViewBuilder {
     contact_model_ = program.builtin_model("Physics.Interactions.SurfaceContact.Model");
     visual_material_ = program.builtin_model("Visuals.Materials.Material");
     // Drivetrains (1-D shafts, gears, differentials, engines and their motors) are not mapped yet: each model
-    // gets its warning instead of vanishing.
+    // gets its warning instead of vanishing, as do collision-group filters.
     for (const char* name :
          {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
           "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.Body",
           "Physics1D.Interactions.Mate", "Physics1D.Interactions.VelocityMotor", "DriveTrain.Actuator",
-          "DriveTrain.TorqueMotor", "DriveTrain.PowerSource"}) {
+          "DriveTrain.TorqueMotor", "DriveTrain.PowerSource", "Simulation.DisableCollisionPair"}) {
       if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {

@@ -452,4 +452,22 @@ TEST_F(Mjcf, DriveTrainModelsAreWarnedOneEach) {
   EXPECT_EQ(xml_.find("<actuator>"), std::string::npos);  // nothing half-mapped
 }
 
+TEST_F(Mjcf, CollisionGroupFiltersAreWarned) {
+  ASSERT_TRUE(
+      load("B is Physics3D.Bodies.RigidBody:\n"
+           "    geometry is Physics3D.Geometries.Sphere:\n"
+           "        radius: 0.1\n"
+           "Scene is Physics3D.System:\n"
+           "    a is B\n"
+           "    group is Simulation.CollisionGroup:\n"
+           "        bodies: [a]\n"
+           "    off is Simulation.DisableCollisionPair:\n"
+           "        group1: group\n"
+           "        group2: group\n"))
+      << all_diags();
+  emit("groups");
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`off` is a Simulation.DisableCollisionPair");
+  accept_all_diags();
+}
+
 }  // namespace
