@@ -60,11 +60,13 @@ class Emitter {
     emit_world_geoms(world);
     emit_bodies(world);
     emit_loop_closures(root);
+    emit_drivetrain(root);
     emit_contact_pairs(root);
     emit_actuators(root);
     bind_signals(root, out.signals);
     if (assets_->children().empty()) drop_empty(root, "asset");
-    for (const char* section : {"equality", "contact", "actuator", "sensor"}) drop_empty(root, section);
+    for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
+      drop_empty(root, section);
     out.manifest_json = manifest_json(options_.model_name, out.signals);
     return out;
   }
@@ -638,7 +640,17 @@ class Emitter {
       if (Element* joint = joint_for(i.mate, i.kind == K::RotationalVelocityMotor)) ++velocity_motors_[joint];
     }
     for (const sn::Interaction1D& i : view_.interactions) {
-      if (i.mate < 0 || !tree_mates_.count(i.mate)) continue;  // loop mates warned above
+      if (i.shaft >= 0) {
+        emit_shaft_motor(actuators, i);
+        continue;
+      }
+      if (i.mate < 0) {
+        warn(i.where, "`" + i.path +
+                          "` acts on connectors that no mate joins (or on a drivetrain it cannot "
+                          "drive); it was left out");
+        continue;
+      }
+      if (!tree_mates_.count(i.mate)) continue;  // loop mates warned above
       const bool rotational = i.kind == K::TorsionSpring || i.kind == K::RotationalRange ||
                               i.kind == K::RotationalVelocityMotor || i.kind == K::TorqueMotor;
       Element* joint = joint_for(i.mate, rotational);
@@ -718,6 +730,129 @@ class Emitter {
       }
       if (dampings[joint] > 0) joint->set("damping", dampings[joint]);
     }
+  }
+
+  // ------------------------------------------------------------------------------------------ drivetrains
+
+  // A drivetrain as MuJoCo joints and constraints: every shaft is a rotor body spinning about z at the world
+  // origin (no geometry, its inertia about the axis), hinge/prismatic actuators tie a shaft's angle to the
+  // mate's joint and gears tie two shafts with joint equalities (MuJoCo measures both from their initial
+  // values), a differential ties its three shafts with a fixed tendon held at its initial length:
+  // w_drive = gear_ratio (w_left + w_right) / 2. Gears: ratio = input speed / output speed (UNCONFIRMED for
+  // AGX; the corpus only uses -1, where both readings agree).
+  void emit_drivetrain(Element& root) {
+    if (view_.shafts.empty()) return;
+    for (const sn::Shaft& shaft : view_.shafts) {
+      Element& body = world_->add("body");
+      body.set("name", name(shaft.path)).set("pos", "0 0 0");
+      Element& joint = body.add("joint");
+      joint.set("name", name(shaft.path)).set("type", "hinge").set("axis", "0 0 1");
+      const double inertia = std::max(shaft.inertia, 1e-9);
+      body.add("inertial")
+          .set("pos", "0 0 0")
+          .set("mass", 1.0)
+          .set("diaginertia", Eigen::Vector3d::Constant(inertia));
+      shaft_joints_.push_back(name(shaft.path));
+    }
+    Element* equality = nullptr;
+    for (const std::unique_ptr<Element>& e : root.children()) {
+      if (e->name() == "equality") equality = e.get();
+    }
+    Element& tendons = root.add("tendon");
+    for (const sn::DriveCoupling& c : view_.couplings) {
+      const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });
+      const size_t needed = c.kind == sn::DriveCoupling::Kind::Actuator ? 1
+                            : c.kind == sn::DriveCoupling::Kind::Gear   ? 2
+                                                                        : 3;
+      if (!complete || c.shafts.size() != needed) {
+        warn(c.where, "`" + c.path + "` does not connect drivetrain shafts; it was left out");
+        continue;
+      }
+      switch (c.kind) {
+        case sn::DriveCoupling::Kind::Actuator: {
+          Element* joint = c.mate >= 0 && tree_mates_.count(c.mate)
+                               ? joint_for(c.mate, view_.mates[c.mate].type != sn::MateType::Prismatic)
+                               : nullptr;
+          if (!joint) {
+            warn(c.where, "`" + c.path +
+                              ".mate_3d` is not a hinge or prismatic joint of MuJoCo's tree; the "
+                              "actuator was left out");
+            continue;
+          }
+          equality->add("joint")
+              .set("name", name(c.path))
+              .set("joint1", *joint->get("name"))
+              .set("joint2", shaft_joints_[c.shafts[0]])
+              .set("polycoef", "0 1 0 0 0");
+          drive_edges_.push_back({c.shafts[0], -1, 1.0, joint});
+          break;
+        }
+        case sn::DriveCoupling::Kind::Gear:
+          if (c.ratio == 0) {
+            warn(c.where, "`" + c.path + ".ratio` is 0; the gear was left out");
+            continue;
+          }
+          equality->add("joint")
+              .set("name", name(c.path))
+              .set("joint1", shaft_joints_[c.shafts[1]])
+              .set("joint2", shaft_joints_[c.shafts[0]])
+              .set("polycoef", "0 " + number(1 / c.ratio) + " 0 0 0");
+          drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
+          break;
+        case sn::DriveCoupling::Kind::Differential: {
+          if (const fe::Value* locked = ev_.value(c.object, "locked_up");
+              locked && locked->kind == fe::Value::Kind::Bool && locked->bool_value) {
+            warn(c.where, "`" + c.path + ".locked_up` has no mapping; the differential is emitted open");
+          }
+          Element& tendon = tendons.add("fixed");
+          tendon.set("name", name(c.path));
+          const double half = c.ratio / 2;
+          tendon.add("joint").set("joint", shaft_joints_[c.shafts[0]]).set("coef", 1.0);
+          tendon.add("joint").set("joint", shaft_joints_[c.shafts[1]]).set("coef", -half);
+          tendon.add("joint").set("joint", shaft_joints_[c.shafts[2]]).set("coef", -half);
+          equality->add("tendon").set("name", name(c.path)).set("tendon1", name(c.path));
+          // For gain estimates: an axle turns about 1/gear_ratio as fast as the drive.
+          drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
+          drive_edges_.push_back({c.shafts[0], c.shafts[2], 1 / c.ratio, nullptr});
+          break;
+        }
+      }
+    }
+  }
+
+  // A rotational velocity motor on a shaft: a <velocity> actuator on the shaft's joint, its gain capped like
+  // the 3-D motors' by the inertia the whole drivetrain presents at that shaft.
+  void emit_shaft_motor(Element& actuators, const sn::Interaction1D& i) {
+    const double gain = real(i.object, "gain", 1e8);
+    const double stable = 0.5 * drivetrain_inertia(i.shaft) / kTimestep;
+    if (gain > stable) note_capped_gain(i, gain, stable);
+    Element& a = actuators.add("velocity");
+    a.set("name", name(i.path)).set("joint", shaft_joints_[i.shaft]).set("kv", std::min(gain, stable));
+    effort_limits(a, i);
+    actuator_ctrl_[i.object] = {static_cast<int>(actuator_count_++), real(i.object, "target_speed", 1.0)};
+  }
+
+  // Inertia reflected to shaft `start`: every shaft's inertia and every driven joint's subtree inertia, times
+  // the square of its speed relative to the start (gears scale speeds by their ratio; an even differential
+  // split is assumed).
+  double drivetrain_inertia(int start) {
+    std::map<int, double> speed{{start, 1.0}};
+    std::vector<int> todo{start};
+    double total = 0;
+    while (!todo.empty()) {
+      const int s = todo.back();
+      todo.pop_back();
+      total += std::max(view_.shafts[s].inertia, 1e-9) * speed[s] * speed[s];
+      for (const DriveEdge& e : drive_edges_) {
+        if (e.joint && e.from == s) total += effective_inertia(*e.joint) * speed[s] * speed[s];
+        if (e.to < 0 || (e.from != s && e.to != s)) continue;
+        const int next = e.from == s ? e.to : e.from;
+        if (speed.count(next)) continue;
+        speed[next] = e.from == s ? speed[s] * e.factor : speed[s] / e.factor;
+        todo.push_back(next);
+      }
+    }
+    return total;
   }
 
   // Simulation.Environment's uniform gravity field, else standard gravity.
@@ -851,6 +986,11 @@ class Emitter {
       return bind_interaction(std::move(b), stem, view_.interactions[i]);
     if (const int m = mate_of(s.source); m >= 0) return bind_mate(std::move(b), stem, m);
     if (const int n = node_of(s.source); n >= 0) return bind_body(std::move(b), stem, n);
+    if (const int k = index_of(shaft_index_, s.source, view_.shafts);
+        k >= 0 && !b.input && any_of(stem, {"Angle", "AngularVelocity1D"})) {
+      return mapped(std::move(b), stem == "Angle" ? Quantity::JointPosition : Quantity::JointVelocity,
+                    MjObject::Joint, shaft_joints_[k]);
+    }
     if (const int c = index_of(connector_index_, s.source, view_.connectors); c >= 0)
       return bind_connector(std::move(b), stem, c);
     return unmapped(std::move(b), "its source `" + view_path(s.source) + "` has no MuJoCo element");
@@ -1153,6 +1293,14 @@ class Emitter {
   std::map<fe::ObjectId, std::pair<int, double>> actuator_ctrl_;  // motor -> actuator index, initial ctrl
   size_t actuator_count_ = 0;
   Element* assets_ = nullptr;
+  struct DriveEdge {
+    int from;        // shaft
+    int to;          // shaft, -1 for an actuator
+    double factor;   // speed of `to` per unit speed of `from`
+    Element* joint;  // an actuator's 3-D joint
+  };
+  std::vector<DriveEdge> drive_edges_;
+  std::vector<std::string> shaft_joints_;  // per shaft: its MuJoCo joint
   Element* world_ = nullptr;
   Element* sensors_ = nullptr;
   std::set<int> mocap_;
@@ -1169,6 +1317,7 @@ class Emitter {
   std::map<fe::ObjectId, std::string> range_joints_;
   std::unordered_map<fe::ObjectId, int> interaction_index_;
   std::unordered_map<fe::ObjectId, int> connector_index_;
+  std::unordered_map<fe::ObjectId, int> shaft_index_;
 };
 
 }  // namespace

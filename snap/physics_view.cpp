@@ -24,13 +24,20 @@ class ViewBuilder {
     output_ = program.builtin_model("Physics.Signals.Output");
     contact_model_ = program.builtin_model("Physics.Interactions.SurfaceContact.Model");
     visual_material_ = program.builtin_model("Visuals.Materials.Material");
-    // Drivetrains (1-D shafts, gears, differentials, engines and their motors) are not mapped yet: each model
-    // gets its warning instead of vanishing, as do collision-group filters.
+    shaft_ = program.builtin_model("Physics1D.Bodies.RotationalBody");
+    gear_ = program.builtin_model("DriveTrain.Gear");
+    differential_ = program.builtin_model("DriveTrain.Differential");
+    drive_actuator_ = program.builtin_model("DriveTrain.Actuator");
+    motor1d_ = program.builtin_model("Physics1D.Interactions.RotationalVelocityMotor");
+    // Drivetrain parts beyond shafts, gears, differentials, hinge/prismatic actuators and rotational velocity
+    // motors are not mapped: each gets its warning instead of vanishing, as do collision-group filters.
     for (const char* name :
          {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
-          "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.Body",
-          "Physics1D.Interactions.Mate", "Physics1D.Interactions.VelocityMotor", "DriveTrain.Actuator",
-          "DriveTrain.TorqueMotor", "DriveTrain.PowerSource", "Simulation.DisableCollisionPair"}) {
+          "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.LinearBody",
+          "DriveTrain.ViscousGear", "DriveTrain.TorqueLimitedSlipDifferential", "DriveTrain.GearBox",
+          "DriveTrain.ManualClutch", "DriveTrain.ManualBrake", "DriveTrain.EmpiricalTorqueConverter",
+          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.TorqueMotor", "DriveTrain.PowerSource",
+          "Simulation.DisableCollisionPair"}) {
       if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
@@ -89,6 +96,7 @@ class ViewBuilder {
     }
     for (Mate& mate : view_.mates) resolve_connectors(mate);
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
+    resolve_drivetrain();
     return std::move(view_);
   }
 
@@ -103,7 +111,23 @@ class ViewBuilder {
         return;  // nothing inside maps either
       }
     }
-    if (obj.type->is_subtype_of(system_) || obj.type->is_subtype_of(body_)) {
+    if (is(obj, shaft_)) {
+      const fe::ObjectId inertia = object(id, "inertia");
+      view_.shafts.push_back({id, ev_.graph().path(id),
+                              inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0), where_of(id)});
+    } else if (is(obj, gear_) || is(obj, differential_) || is(obj, drive_actuator_)) {
+      using Kind = DriveCoupling::Kind;
+      const Kind kind = is(obj, gear_)           ? Kind::Gear
+                        : is(obj, differential_) ? Kind::Differential
+                                                 : Kind::Actuator;
+      view_.couplings.push_back({kind,
+                                 id,
+                                 ev_.graph().path(id),
+                                 {},
+                                 -1,
+                                 real(id, kind == Kind::Differential ? "gear_ratio" : "ratio", 1.0),
+                                 where_of(id)});
+    } else if (obj.type->is_subtype_of(system_) || obj.type->is_subtype_of(body_)) {
       node = add_node(id, enclosing, is_root);
     } else if (obj.type->is_subtype_of(connector_)) {
       add_connector(id, enclosing);
@@ -219,6 +243,51 @@ class ViewBuilder {
       if (ev_.graph().at(id).type->is_subtype_of(model)) interaction.kind = kind;
     }
     view_.interactions.push_back(std::move(interaction));
+  }
+
+  // Drivetrain references: 1-D connectors belong to the shaft that owns them; actuators name a 3-D mate.
+  void resolve_drivetrain() {
+    std::unordered_map<fe::ObjectId, int> shaft_of;
+    for (size_t k = 0; k < view_.shafts.size(); ++k) shaft_of[view_.shafts[k].object] = static_cast<int>(k);
+    auto shaft = [&](fe::ObjectId ref) {
+      if (ref == fe::kNoObject) return -1;
+      if (auto it = shaft_of.find(ref); it != shaft_of.end()) return it->second;  // the shaft itself
+      auto it = shaft_of.find(ev_.graph().at(ref).owner);                         // one of its connectors
+      return it == shaft_of.end() ? -1 : it->second;
+    };
+    auto connectors = [&](fe::ObjectId id) {
+      std::vector<int> out;
+      if (const fe::Value* list = ev_.value(id, "connectors"); list && list->kind == fe::Value::Kind::Array) {
+        for (const fe::Value& c : list->array)
+          out.push_back(c.kind == fe::Value::Kind::Object ? shaft(c.object) : -1);
+      }
+      return out;
+    };
+    for (DriveCoupling& c : view_.couplings) {
+      switch (c.kind) {
+        case DriveCoupling::Kind::Gear:
+          c.shafts = connectors(c.object);
+          break;
+        case DriveCoupling::Kind::Differential:
+          for (const char* name : {"drive_shaft", "left_axle_shaft", "right_axle_shaft"})
+            c.shafts.push_back(shaft(object(c.object, name)));
+          break;
+        case DriveCoupling::Kind::Actuator: {
+          c.shafts.push_back(shaft(object(c.object, "connector_1d")));
+          const fe::ObjectId mate = object(c.object, "mate_3d");
+          for (size_t m = 0; m < view_.mates.size(); ++m) {
+            if (view_.mates[m].object == mate) c.mate = static_cast<int>(m);
+          }
+          break;
+        }
+      }
+    }
+    for (Interaction1D& i : view_.interactions) {
+      if (!is(ev_.graph().at(i.object), motor1d_)) continue;
+      i.kind = Interaction1D::Kind::RotationalVelocityMotor;
+      const std::vector<int> on = connectors(i.object);
+      i.shaft = on.size() == 1 ? on[0] : -1;
+    }
   }
 
   // A 1-dof interaction acts on the mate whose connectors it shares (in either order).
@@ -453,6 +522,11 @@ class ViewBuilder {
   std::vector<std::pair<fe::ModelInfo*, MateType>> mate_kinds_;
   std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;
   std::vector<std::pair<fe::ModelInfo*, Interaction1D::Kind>> kinds1d_;
+  fe::ModelInfo* shaft_ = nullptr;
+  fe::ModelInfo* gear_ = nullptr;
+  fe::ModelInfo* differential_ = nullptr;
+  fe::ModelInfo* drive_actuator_ = nullptr;
+  fe::ModelInfo* motor1d_ = nullptr;
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;

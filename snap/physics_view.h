@@ -76,7 +76,8 @@ struct Interaction1D {
   frontend::ObjectId object;
   Kind kind = Kind::Other;
   std::string path;
-  int mate = -1;  // the mate with the same two connectors, -1 when none
+  int mate = -1;   // the mate with the same two connectors, -1 when none
+  int shaft = -1;  // a drivetrain motor: the shaft it drives
   frontend::SourceRange where;
 };
 
@@ -133,6 +134,26 @@ struct Unsupported {
   frontend::SourceRange where;
 };
 
+// A rotating 1-D body of a drivetrain (DriveTrain.Shaft, Physics1D rotational bodies).
+struct Shaft {
+  frontend::ObjectId object;
+  std::string path;
+  double inertia = 1.0;  // kg m^2
+  frontend::SourceRange where;
+};
+
+// How drivetrain shafts are tied to each other and to 3-D mates.
+struct DriveCoupling {
+  enum class Kind { Actuator, Gear, Differential };
+  Kind kind = Kind::Gear;
+  frontend::ObjectId object;
+  std::string path;
+  std::vector<int> shafts;  // Actuator: {shaft}; Gear: {input, output}; Differential: {drive, left, right}
+  int mate = -1;            // Actuator: the 3-D mate it drives
+  double ratio = 1.0;       // Gear: ratio; Differential: gear_ratio
+  frontend::SourceRange where;
+};
+
 struct PhysicsView {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
@@ -144,7 +165,9 @@ struct PhysicsView {
   std::vector<ContactModel> contact_models;
   std::vector<frontend::ObjectId>
       visual_materials;  // Visuals.Materials.Material instances, the root included
-  int root = kWorld;     // node of the root object, when it is a system or a body
+  std::vector<Shaft> shafts;
+  std::vector<DriveCoupling> couplings;
+  int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;
 };

@@ -440,16 +440,41 @@ TEST_F(Mjcf, ChainTooDeepForMuJoCoIsAClearError) {
             std::string::npos);
 }
 
-// Drivetrains are not mapped yet: each of their models is named in a warning, none vanishes silently.
-TEST_F(Mjcf, DriveTrainModelsAreWarnedOneEach) {
+// A drivetrain becomes rotor joints tied by equalities: the shaft is a rotor body, the hinge actuator a joint
+// equality between the hinge and the shaft, the 1-D motor a velocity actuator on the shaft.
+TEST_F(Mjcf, DriveTrainBecomesRotorsAndEqualities) {
   ASSERT_TRUE(load_corpus("drive_train_velocity_input.openplx")) << all_diags();
-  emit("drive_train");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`pendulum.shaft` is a Physics1D.Bodies.Body");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped,
-                         "`pendulum.motor` is a Physics1D.Interactions.VelocityMotor");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`pendulum.hinge_actuator` is a DriveTrain.Actuator");
+  const std::string path = emit("drive_train");
   accept_all_diags();
-  EXPECT_EQ(xml_.find("<actuator>"), std::string::npos);  // nothing half-mapped
+  EXPECT_NE(
+      xml_.find("<joint name=\"pendulum.hinge_actuator\" joint1=\"pendulum.hinge\" joint2=\"pendulum.shaft\" "
+                "polycoef=\"0 1 0 0 0\"/>"),
+      std::string::npos)
+      << xml_;
+  EXPECT_NE(xml_.find("<velocity name=\"pendulum.motor\" joint=\"pendulum.shaft\""), std::string::npos);
+  mjModel* m = load_mujoco(path);
+  ASSERT_NE(m, nullptr);
+  const int shaft = mj_name2id(m, mjOBJ_BODY, "pendulum.shaft");
+  EXPECT_DOUBLE_EQ(m->body_inertia[3 * shaft + 2], 1.0);  // inertia.inertia: 1.0 about the rotor axis
+  EXPECT_EQ(m->neq, 1);
+  mj_deleteModel(m);
+}
+
+// Drivetrain parts without a mapping are named in a warning, never dropped silently.
+TEST_F(Mjcf, UnmappedDriveTrainPartsAreWarned) {
+  ASSERT_TRUE(
+      load("Scene is Physics3D.System:\n"
+           "    a is DriveTrain.Shaft\n"
+           "    b is DriveTrain.Shaft\n"
+           "    clutch is DriveTrain.ManualClutch:\n"
+           "        torque_capacity: 10\n"
+           "        initial_engagement_fraction: 1\n"
+           "        min_relative_slip_ratio: 0.01\n"
+           "        connectors: [a.output, b.input]\n"))
+      << all_diags();
+  emit("clutch");
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`clutch` is a DriveTrain.ManualClutch");
+  accept_all_diags();
 }
 
 TEST_F(Mjcf, CollisionGroupFiltersAreWarned) {
