@@ -266,6 +266,26 @@ class Emitter {
     }
   }
 
+  // Dry friction of a mate's free degree of freedom. MuJoCo's joint friction is a constant limit
+  // (`frictionloss`), so only a friction given a constant normal force maps: limit = coefficient x normal
+  // force (N for slides; read as N m for hinges, UNCONFIRMED). Friction that scales with the constraint force
+  // has no 2.2.2 counterpart and is warned.
+  void apply_friction(Element& joint, const sn::Mate& mate, const char* attribute) {
+    const fe::ObjectId friction = object(mate.object, attribute);
+    if (friction == fe::kNoObject) return;
+    const std::string& type = ev_.graph().at(friction).type->qualified;
+    if (type == "Physics.Interactions.Dissipation.DefaultFriction") return;
+    if (type == "Physics.Interactions.Dissipation.DryConstantNormalForceFriction") {
+      const double limit = real(friction, "coefficient") * real(friction, "normal_force");
+      if (limit > 0) joint.set("frictionloss", limit);
+      return;
+    }
+    warn(mate.where,
+         "`" + mate.path + "." + attribute + "` (" + type +
+             ") depends on the constraint force, which MuJoCo 2.2.2 joint friction cannot; the joint "
+             "was emitted without friction");
+  }
+
   void emit_joints(Element& body, int node, int m) {
     const sn::Mate& mate = view_.mates[m];
     warn_mate_softness(mate, false);
@@ -287,14 +307,14 @@ class Emitter {
     };
     switch (mate.type) {
       case sn::MateType::Hinge:
-        joint("hinge", "", mate.initial_angle);
+        apply_friction(*joint("hinge", "", mate.initial_angle), mate, "friction");
         break;
       case sn::MateType::Prismatic:
-        joint("slide", "", mate.initial_position);
+        apply_friction(*joint("slide", "", mate.initial_position), mate, "friction");
         break;
       case sn::MateType::Cylindrical:
-        joint("slide", ".slide", mate.initial_position);
-        joint("hinge", ".hinge", mate.initial_angle);
+        apply_friction(*joint("slide", ".slide", mate.initial_position), mate, "friction_translational");
+        apply_friction(*joint("hinge", ".hinge", mate.initial_angle), mate, "friction_rotational");
         break;
       case sn::MateType::Ball:
         joint("ball", "", 0.0);

@@ -93,4 +93,54 @@ TEST_F(Meshes, MateFlexibilityIsReportedAtTheMate) {
   accept_all_diags();
 }
 
+// A hinge with dry friction at a constant normal force holds a pendulum whose gravity torque stays below the
+// friction limit: 0.5 x 4 = 2 N m against 1 kg x 9.81 x 0.5 m x sin(0.3) = 1.45 N m. Normal-force-dependent
+// friction is warned.
+TEST_F(Meshes, ConstantNormalForceFrictionBecomesFrictionloss) {
+  for (const bool constant : {true, false}) {
+    SCOPED_TRACE(constant ? "constant normal force" : "cone friction");
+    const std::string friction =
+        constant ? "        friction becomes Physics.Interactions.Dissipation."
+                   "DryConstantNormalForceFriction:\n"
+                   "            coefficient: 0.5\n"
+                   "            normal_force: 4\n"
+                 : "        friction becomes Physics.Interactions.Dissipation.DryConeFriction\n";
+    ASSERT_TRUE(
+        load("Rod is Physics3D.Bodies.RigidBody:\n"
+             "    inertia.mass: 1\n"
+             "    geometry is Physics3D.Geometries.Box:\n"
+             "        size: {0.05, 0.05, 1}\n"
+             "    top is Physics3D.Interactions.MateConnector:\n"
+             "        position.z: 0.5\n"
+             "        main_axis: Math.Vec3.Y_AXIS()\n"
+             "        normal: Math.Vec3.Z_AXIS()\n"
+             "Scene is Physics3D.System:\n"
+             "    pivot is Physics3D.Interactions.MateConnector:\n"
+             "        main_axis: Math.Vec3.Y_AXIS()\n"
+             "        normal: Math.Vec3.Z_AXIS()\n"
+             "    rod is Rod\n"
+             "    hinge is Physics3D.Interactions.Hinge:\n"
+             "        connectors: [pivot, rod.top]\n"
+             "        initial_angle: 0.3\n" +
+             friction))
+        << all_diags();
+    const std::string path = emit(constant ? "friction" : "cone");
+    if (!constant) {
+      expect_diag_containing(fe::DiagCode::MjcfUnmapped,
+                             "`hinge.friction` (Physics.Interactions.Dissipation.DryConeFriction)");
+      continue;
+    }
+    accept_all_diags();
+    mjModel* m = load_mujoco(path);
+    ASSERT_NE(m, nullptr);
+    EXPECT_DOUBLE_EQ(m->dof_frictionloss[0], 2.0);
+    mjData* d = mj_makeData(m);
+    for (int k = 0; k < 500; ++k) mj_step(m, d);
+    // Held by friction: it creeps at most by the soft friction constraint's give.
+    EXPECT_NEAR(d->qpos[0], 0.3, 0.01);
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+}
+
 }  // namespace
