@@ -247,6 +247,12 @@ class Emitter {
     if (free_roots_.count(node)) body.add("freejoint").set("name", name(n.path));
     if (edges_[node].mate >= 0) emit_joints(body, node, edges_[node].mate);
     emit_inertial(body, node);
+    if (!n.body.initial_linear_velocity.isZero() || !n.body.initial_angular_velocity.isZero()) {
+      warn(n.where,
+           "`" + n.path +
+               ".kinematics.initial_local_*_velocity`: MJCF has no initial velocity; the body starts at "
+               "rest (the runtime's velocity inputs can set a free body's velocity)");
+    }
     for (const sn::Geometry* g : geometries_of(node)) emit_geom(body, *g, g->local, !n.body.dynamic);
     return body;
   }

@@ -182,6 +182,8 @@ class ViewBuilder {
     if (fe::ObjectId kinematics = object(id, "kinematics"); kinematics != fe::kNoObject) {
       if (fe::ObjectId cm = object(kinematics, "local_cm_transform"); cm != fe::kNoObject)
         body.cm = affine(cm);
+      body.initial_linear_velocity = vec3(kinematics, "initial_local_linear_velocity");
+      body.initial_angular_velocity = vec3(kinematics, "initial_local_angular_velocity");
     }
   }
 

@@ -24,6 +24,8 @@ struct BodyProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the CM frame's origin, in its axes
   Transform cm;                                       // relative to the body frame
   bool dynamic = true;
+  Eigen::Vector3d initial_linear_velocity = Eigen::Vector3d::Zero();  // in the owning system's frame
+  Eigen::Vector3d initial_angular_velocity = Eigen::Vector3d::Zero();
 };
 
 struct FrameNode {

@@ -495,4 +495,22 @@ TEST_F(Mjcf, CollisionGroupFiltersAreWarned) {
   accept_all_diags();
 }
 
+TEST_F(Mjcf, InitialVelocitiesAreWarned) {
+  ASSERT_TRUE(
+      load("B is Physics3D.Bodies.RigidBody:\n"
+           "    inertia.mass: 1\n"
+           "    geometry is Physics3D.Geometries.Sphere:\n"
+           "        radius: 0.1\n"
+           "Scene is Physics3D.System:\n"
+           "    moving is B:\n"
+           "        kinematics.initial_local_linear_velocity: {1, 0, 0}\n"
+           "    resting is B\n"))
+      << all_diags();
+  emit("initial_velocity");
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`moving.kinematics.initial_local_*_velocity`");
+  for (const fe::Diagnostic& d : sink_.diagnostics())
+    EXPECT_EQ(d.message.find("`resting"), std::string::npos);
+  accept_all_diags();
+}
+
 }  // namespace
