@@ -9,6 +9,7 @@
 
 #include "frontend/quoted.h"
 #include "mjcf_emitter/mass_properties.h"
+#include "mjcf_emitter/soft_constraints.h"
 
 namespace openplx::mjcf {
 namespace {
@@ -68,6 +69,7 @@ class Emitter {
     for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
       drop_empty(root, section);
     out.manifest_json = manifest_json(options_.model_name, out.signals);
+    soften_equalities(root);
     return out;
   }
 
@@ -255,6 +257,52 @@ class Emitter {
     }
     for (const sn::Geometry* g : geometries_of(node)) emit_geom(body, *g, g->local, !n.body.dynamic);
     return body;
+  }
+
+  // A loop-closing mate's elastic flexibility (LinearElastic per direction) and its dissipation, as physical
+  // stiffness and damping: the mean over the translational and over the rotational directions (one weld has
+  // one value each; differing directions are warned). Damping: MechanicalDamping as given, a relaxation time
+  // t as t k, else AGX's default of two time steps. nullopt when the mate is rigid.
+  std::optional<MateCompliance> compliance(const sn::Mate& mate) {
+    const fe::ObjectId flex = object(mate.object, "flexibility");
+    if (flex == fe::kNoObject) return std::nullopt;
+    const fe::ObjectId dissipation = object(mate.object, "dissipation");
+    MateCompliance c;
+    bool differs = false;
+    auto directions = [&](std::initializer_list<const char*> axes, double& k_mean, double& b_mean) {
+      int count = 0;
+      double first = -1;
+      for (const char* axis : axes) {
+        const fe::ObjectId elastic = object(flex, axis);
+        const double k = elastic == fe::kNoObject ? 0 : real(elastic, "stiffness");
+        if (!(k > 0)) continue;
+        double b = 2 * kTimestep * k;
+        if (const fe::ObjectId d = dissipation == fe::kNoObject ? fe::kNoObject : object(dissipation, axis);
+            d != fe::kNoObject) {
+          if (const fe::Value* v = ev_.value(d, "damping_constant"); v && v->is_number()) b = v->as_real();
+          if (const fe::Value* t = ev_.value(d, "relaxation_time"); t && t->is_number()) b = t->as_real() * k;
+        }
+        differs = differs || (first >= 0 && k != first);
+        first = k;
+        k_mean += k;
+        b_mean += b;
+        ++count;
+      }
+      if (count > 0) {
+        k_mean /= count;
+        b_mean /= count;
+      }
+    };
+    directions({"along_main", "along_normal", "along_cross"}, c.k_trans, c.b_trans);
+    directions({"around_main", "around_normal", "around_cross"}, c.k_rot, c.b_rot);
+    if (!(c.k_trans > 0)) return std::nullopt;
+    if (differs) {
+      warn(mate.where,
+           "`" + mate.path +
+               ".flexibility` differs between directions; a MuJoCo equality has one stiffness for "
+               "its translations (and one for its rotations), so their means were used");
+    }
+    return c;
   }
 
   // Flexibility and dissipation of a mate's constrained degrees of freedom: tree joints are exactly rigid in
@@ -565,7 +613,8 @@ class Emitter {
       const sn::Transform frame1 =
           e.b >= 0 ? view_.connectors[mate.connectors[1]].local : snap_.connector_world[mate.connectors[1]];
       const Eigen::Vector3d anchor = frame0.position;
-      warn_mate_softness(mate, true);
+      const std::optional<MateCompliance> soft = compliance(mate);
+      if (!soft) warn_mate_softness(mate, true);
       switch (mate.type) {
         case sn::MateType::Lock: {
           Element& weld = equality.add("weld").set("name", name(mate.path)).set("body1", a);
@@ -573,6 +622,7 @@ class Emitter {
           weld.set("anchor",
                    frame1.position);  // where the error is measured: the weld point, in body2's frame
           equalities_of_mate_[e.mate].push_back(*weld.get("name"));
+          if (soft) soft_equalities_.push_back({&weld, a, b, *soft, true});
           break;
         }
         case sn::MateType::Ball:
@@ -588,6 +638,14 @@ class Emitter {
             if (e.b >= 0) connect.set("body2", b);
             connect.set("anchor", point);
             equalities_of_mate_[e.mate].push_back(*connect.get("name"));
+            if (soft) soft_equalities_.push_back({&connect, a, b, *soft, false});
+          }
+          if (soft && soft->k_rot > 0) {
+            warn(mate.where,
+                 "`" + mate.path + ".flexibility`: the rotational stiffness of a " +
+                     sn::mate_type_name(mate.type) +
+                     " closing a loop is not mapped (MuJoCo's connect constrains points only); its "
+                     "translational stiffness is");
           }
           break;
         }
@@ -755,6 +813,21 @@ class Emitter {
         if (info.joint == *joint->get("name")) info.joint_rest = rest;
       }
       if (dampings[joint] > 0) joint->set("damping", dampings[joint]);
+    }
+  }
+
+  // Flexible loop closures need MuJoCo's own inverse-inertia estimate (dA): loaded once, then written.
+  void soften_equalities(Element& root) {
+    if (soft_equalities_.empty() || sink_.has_errors()) return;
+    const SoftEqualityResult r =
+        apply_soft_equalities(root, soft_equalities_, options_.output_dir, kTimestep);
+    if (!r.error.empty()) {
+      warn({}, "flexible loop closures kept MuJoCo's default softness: the draft model did not load (" +
+                   r.error + ")");
+    }
+    for (const std::string& e : r.unstable) {
+      warn({}, "equality " + e + " is stiffer than explicit integration at " + number(kTimestep) +
+                   " s resolves (h sqrt(k/m) > 1); it may oscillate");
     }
   }
 
@@ -1326,6 +1399,7 @@ class Emitter {
     Element* joint;  // an actuator's 3-D joint
   };
   std::vector<DriveEdge> drive_edges_;
+  std::vector<PendingSoftEquality> soft_equalities_;
   std::vector<std::string> shaft_joints_;  // per shaft: its MuJoCo joint
   Element* world_ = nullptr;
   Element* sensors_ = nullptr;
