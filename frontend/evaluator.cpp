@@ -554,7 +554,8 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
       slot = &graph_.at(id).slots[slot_index];
       owns = true;
     }
-    result = convert(std::move(v), type, binding.model->doc->doc.expr(expr).range, slot_path(id, slot->name));
+    result = convert(std::move(v), type, binding.model->doc->doc.expr(expr).range,
+                     [&] { return slot_path(id, graph_.at(id).slots[slot_index].name); });
   }
   slot = &graph_.at(id).slots[slot_index];
   // Assignments to parts of a reference or of a primitive have nowhere to go.
@@ -628,8 +629,8 @@ Value Evaluator::global_value(GlobalInfo* global) {
   const Type type = resolve_type(global->doc, global->decl->type);
   Scope scope{global->doc, nullptr, kNoObject};
   Value v = eval(*global->decl->value, scope, &type);
-  Value converted =
-      convert(std::move(v), type, global->doc->doc.expr(*global->decl->value).range, global->qualified);
+  Value converted = convert(std::move(v), type, global->doc->doc.expr(*global->decl->value).range,
+                            [&] { return global->qualified; });
   auto& entry = globals_[global];
   entry.first = 2;
   entry.second = std::move(converted);
@@ -705,7 +706,9 @@ bool Evaluator::assignable(const Value& v, const Type& target) const {
   return false;
 }
 
-Value Evaluator::convert(Value v, const Type& target, SourceRange where, const std::string& what) {
+// `what` names the value in error messages; it is only built when there is an error (building paths for every
+// converted value cost 8 % of evaluating a large model).
+Value Evaluator::convert(Value v, const Type& target, SourceRange where, const Describe& what) {
   if (v.is_error() || target.kind == TypeKind::Error) return v;
   if (v.kind == Value::Kind::Unset) return v;
   if (target.is_array && v.kind == Value::Kind::Array) {
@@ -719,7 +722,7 @@ Value Evaluator::convert(Value v, const Type& target, SourceRange where, const s
   if (!target.is_array && target.kind == TypeKind::Int && v.kind == Value::Kind::Real) {
     if (std::trunc(v.real_value) != v.real_value || std::abs(v.real_value) > 9.2e18) {
       sink_.report(DiagCode::TypeMismatch, where,
-                   "Cannot convert Real value " + format_real(v.real_value) + " to Int for " + what);
+                   "Cannot convert Real value " + format_real(v.real_value) + " to Int for " + what());
       return Value::error();
     }
     return Value::of_int(static_cast<int64_t>(v.real_value));
@@ -727,7 +730,7 @@ Value Evaluator::convert(Value v, const Type& target, SourceRange where, const s
   if (!assignable(v, target)) {
     sink_.report(DiagCode::TypeMismatch, where,
                  "Type mismatch: expected " + target.describe() + ", got " + describe_value_type(v, graph_) +
-                     " for " + what);
+                     " for " + what());
     return Value::error();
   }
   if (!target.is_array && target.kind == TypeKind::Real && v.kind == Value::Kind::Int) {
@@ -923,7 +926,8 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
         Value v = eval(item, scope, typed ? &element : nullptr);
         // Checked here so a wrong element is reported where it is written.
         if (typed)
-          v = convert(std::move(v), element, doc.expr(item).range, "an element of " + expected->describe());
+          v = convert(std::move(v), element, doc.expr(item).range,
+                      [&] { return "an element of " + expected->describe(); });
         if (v.is_error()) return v;
         items.push_back(std::move(v));
       }
@@ -966,7 +970,7 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
     Value v = eval(e.operands[i], scope, &field_type);
     const std::string field_name(graph_.at(object).slots[fields[i]].name);
     v = convert(std::move(v), field_type, scope.doc->doc.expr(e.operands[i]).range,
-                model->qualified + "." + field_name);
+                [&] { return model->qualified + "." + field_name; });
     if (v.is_error()) return v;
     preset(object, field_name, std::move(v));
   }
@@ -1105,7 +1109,7 @@ Value Evaluator::apply_operator(char op, const std::vector<Value>& operands, Sou
   }
   std::vector<Value> args;
   for (size_t i = 0; i < operands.size(); ++i) {
-    args.push_back(convert(operands[i], params[i], where, std::string("operand of ") + op));
+    args.push_back(convert(operands[i], params[i], where, [&] { return std::string("operand of ") + op; }));
   }
   NativeCall call(*this, where);
   Value result = (*fn)(call, args);
@@ -1211,7 +1215,7 @@ Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::op
     const Type param = resolve_type_ref(owner->doc, m.params[i].type);
     Value v = eval(args[i], scope, &param);
     v = convert(std::move(v), param, scope.doc->doc.expr(args[i]).range,
-                "argument `" + std::string(m.params[i].name.text) + "` of " + name);
+                [&] { return "argument `" + std::string(m.params[i].name.text) + "` of " + name; });
     if (v.is_error()) return v;
     values.push_back(std::move(v));
   }
@@ -1228,7 +1232,7 @@ Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::op
   Value result = (*fn)(call, values);
   if (call.poisoned()) return Value::error();
   const Type ret = resolve_type_ref(owner->doc, *m.return_type);
-  return convert(std::move(result), ret, where, "the result of " + qualified);
+  return convert(std::move(result), ret, where, [&] { return "the result of " + qualified; });
 }
 
 // ------------------------------------------------------------------------------------------- natives

@@ -148,7 +148,8 @@ class Evaluator {
   const MethodInfo* find_method(ModelInfo* model, std::string_view name, ModelInfo** owner);
 
   // Checks and converts `v` for a slot or parameter of type `target`; reports at `where`.
-  Value convert(Value v, const Type& target, SourceRange where, const std::string& what);
+  using Describe = std::function<std::string()>;
+  Value convert(Value v, const Type& target, SourceRange where, const Describe& what);
   bool assignable(const Value& v, const Type& target) const;
   static bool is_path_expression(const Document& doc, ExprId expr);
 

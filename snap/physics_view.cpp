@@ -105,45 +105,60 @@ class ViewBuilder {
   void visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_root) {
     const fe::Object& obj = ev_.graph().at(id);
     int node = enclosing;
-    for (const fe::ModelInfo* m : unsupported_) {
-      if (!is_root && obj.type->is_subtype_of(m)) {
-        view_.unsupported.push_back({id, ev_.graph().path(id), m->qualified, where_of(id)});
-        return;  // nothing inside maps either
-      }
+    const Role role = role_of(obj.type);
+    if (role.unsupported && !is_root) {
+      view_.unsupported.push_back({id, ev_.graph().path(id), role.unsupported->qualified, where_of(id)});
+      return;  // nothing inside maps either
     }
-    if (is(obj, shaft_)) {
-      const fe::ObjectId inertia = object(id, "inertia");
-      view_.shafts.push_back({id, ev_.graph().path(id),
-                              inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0), where_of(id)});
-    } else if (is(obj, gear_) || is(obj, differential_) || is(obj, drive_actuator_)) {
-      using Kind = DriveCoupling::Kind;
-      const Kind kind = is(obj, gear_)           ? Kind::Gear
-                        : is(obj, differential_) ? Kind::Differential
-                                                 : Kind::Actuator;
-      view_.couplings.push_back({kind,
-                                 id,
-                                 ev_.graph().path(id),
-                                 {},
-                                 -1,
-                                 real(id, kind == Kind::Differential ? "gear_ratio" : "ratio", 1.0),
-                                 where_of(id)});
-    } else if (obj.type->is_subtype_of(system_) || obj.type->is_subtype_of(body_)) {
-      node = add_node(id, enclosing, is_root);
-    } else if (obj.type->is_subtype_of(connector_)) {
-      add_connector(id, enclosing);
-    } else if (obj.type->is_subtype_of(mate_)) {
-      add_mate(id);
-    } else if (is(obj, contact_geometry_) || is(obj, visual_geometry_)) {
-      add_geometry(id, enclosing);
-    } else if (is(obj, interaction1d_)) {
-      add_interaction(id);
-    } else if (is(obj, input_) || is(obj, output_)) {
-      add_signal(id);
-    } else if (is(obj, visual_material_)) {
-      view_.visual_materials.push_back(id);
-    } else if (is(obj, contact_model_)) {
-      view_.contact_models.push_back(
-          {id, ev_.graph().path(id), object(id, "material_1"), object(id, "material_2"), where_of(id)});
+    switch (role.kind) {
+      case Role::Kind::Shaft: {
+        const fe::ObjectId inertia = object(id, "inertia");
+        view_.shafts.push_back({id, ev_.graph().path(id),
+                                inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0),
+                                where_of(id)});
+        break;
+      }
+      case Role::Kind::Coupling: {
+        using Kind = DriveCoupling::Kind;
+        const Kind kind = is(obj, gear_)           ? Kind::Gear
+                          : is(obj, differential_) ? Kind::Differential
+                                                   : Kind::Actuator;
+        view_.couplings.push_back({kind,
+                                   id,
+                                   ev_.graph().path(id),
+                                   {},
+                                   -1,
+                                   real(id, kind == Kind::Differential ? "gear_ratio" : "ratio", 1.0),
+                                   where_of(id)});
+        break;
+      }
+      case Role::Kind::Node:
+        node = add_node(id, enclosing, is_root);
+        break;
+      case Role::Kind::Connector:
+        add_connector(id, enclosing);
+        break;
+      case Role::Kind::Mate:
+        add_mate(id);
+        break;
+      case Role::Kind::Geometry:
+        add_geometry(id, enclosing);
+        break;
+      case Role::Kind::Interaction:
+        add_interaction(id);
+        break;
+      case Role::Kind::Signal:
+        add_signal(id);
+        break;
+      case Role::Kind::VisualMaterial:
+        view_.visual_materials.push_back(id);
+        break;
+      case Role::Kind::ContactModel:
+        view_.contact_models.push_back(
+            {id, ev_.graph().path(id), object(id, "material_1"), object(id, "material_2"), where_of(id)});
+        break;
+      case Role::Kind::None:
+        break;
     }
     // Children in reverse so the stack pops them in declaration order.
     std::vector<fe::ObjectId> children;
@@ -152,6 +167,50 @@ class ViewBuilder {
       if (slot.owns && slot.value.kind == fe::Value::Kind::Object) children.push_back(slot.value.object);
     }
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, node});
+  }
+
+  // What a model is to the view, decided once per model (a large tree has few models and many objects).
+  struct Role {
+    enum class Kind {
+      None,
+      Shaft,
+      Coupling,
+      Node,
+      Connector,
+      Mate,
+      Geometry,
+      Interaction,
+      Signal,
+      VisualMaterial,
+      ContactModel
+    };
+    Kind kind = Kind::None;
+    const fe::ModelInfo* unsupported = nullptr;
+  };
+  Role role_of(const fe::ModelInfo* type) {
+    auto [it, fresh] = roles_.try_emplace(type);
+    if (!fresh) return it->second;
+    Role& role = it->second;
+    for (const fe::ModelInfo* m : unsupported_) {
+      if (type->is_subtype_of(m)) {
+        role.unsupported = m;
+        break;
+      }
+    }
+    auto sub = [&](const fe::ModelInfo* m) { return m && type->is_subtype_of(m); };
+    using K = Role::Kind;
+    role.kind = sub(shaft_)                                                ? K::Shaft
+                : sub(gear_) || sub(differential_) || sub(drive_actuator_) ? K::Coupling
+                : sub(system_) || sub(body_)                               ? K::Node
+                : sub(connector_)                                          ? K::Connector
+                : sub(mate_)                                               ? K::Mate
+                : sub(contact_geometry_) || sub(visual_geometry_)          ? K::Geometry
+                : sub(interaction1d_)                                      ? K::Interaction
+                : sub(input_) || sub(output_)                              ? K::Signal
+                : sub(visual_material_)                                    ? K::VisualMaterial
+                : sub(contact_model_)                                      ? K::ContactModel
+                                                                           : K::None;
+    return role;
   }
 
   static bool is(const fe::Object& obj, const fe::ModelInfo* model) {
@@ -524,6 +583,7 @@ class ViewBuilder {
   std::vector<std::pair<fe::ModelInfo*, MateType>> mate_kinds_;
   std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;
   std::vector<std::pair<fe::ModelInfo*, Interaction1D::Kind>> kinds1d_;
+  std::unordered_map<const fe::ModelInfo*, Role> roles_;
   fe::ModelInfo* shaft_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;
   fe::ModelInfo* differential_ = nullptr;
