@@ -538,6 +538,18 @@ class Emitter {
         material.set("reflectance", std::clamp(metal->as_real(), 0.0, 1.0));
       }
       material_names_[m] = name(path);
+      // Texture maps carry pixels inline (base64); MuJoCo 2.2.2 reads textures only from image files.
+      for (const char* map : {"base_color_map", "roughness_map", "metallic_map", "alpha_map",
+                              "ambient_occlusion_map", "normal_map"}) {
+        const fe::ObjectId texture = object(m, map);
+        const fe::ObjectId data = texture == fe::kNoObject ? fe::kNoObject : object(texture, "data");
+        if (data != fe::kNoObject && real(data, "width") > 0 && real(data, "height") > 0) {
+          warn(sn::source_of(ev_.graph(), texture),
+               "`" + path + "." + map +
+                   "` is an inline texture, which MuJoCo 2.2.2 cannot read (it takes image "
+                   "files); the material keeps its colour only");
+        }
+      }
     }
   }
 

@@ -385,13 +385,7 @@ class ViewBuilder {
     view_.signals.push_back(std::move(signal));
   }
 
-  fe::SourceRange where_of(fe::ObjectId id) {
-    const fe::Object& obj = ev_.graph().at(id);
-    if (obj.owner == fe::kNoObject) return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
-    const fe::Slot* slot = ev_.graph().at(obj.owner).find(obj.name);
-    if (!slot) return {};
-    return slot->declaration->member->range;
-  }
+  fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
 
   // ConvexMesh/TriMesh vertices (Math.Vec3 instances) and TriMesh triangle indices.
   void read_mesh_data(fe::ObjectId id, Geometry& g) {
@@ -595,6 +589,14 @@ class ViewBuilder {
 };
 
 }  // namespace
+
+frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id) {
+  const fe::Object& obj = graph.at(id);
+  if (obj.owner == fe::kNoObject) return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
+  const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
+  if (!slot) return {};
+  return slot->declaration->member->range;
+}
 
 PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root,
                                frontend::DiagnosticSink& sink) {

@@ -174,6 +174,9 @@ struct PhysicsView {
   std::vector<std::pair<bool, int>> order;
 };
 
+// Where an instance was declared: its attribute's line in the owner, or its model's declaration for roots.
+frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id);
+
 // Builds the view of the tree under `root`. Requires the graph to be fully evaluated.
 PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root,
                                frontend::DiagnosticSink& sink);

@@ -513,4 +513,19 @@ TEST_F(Mjcf, InitialVelocitiesAreWarned) {
   accept_all_diags();
 }
 
+// Inline texture maps cannot go into MJCF 2.2.2 (it reads image files): said once per map, at the texture.
+TEST_F(Mjcf, InlineTexturesAreWarned) {
+  ASSERT_TRUE(
+      load("Painted is Visuals.Materials.Material:\n"
+           "    with Visuals.Materials.SurfaceFeatures.BaseColor\n"
+           "    base_color_map becomes Visuals.Textures.Texture:\n"
+           "        data.width: 1\n"
+           "        data.height: 1\n"
+           "        data.data: \"/wAA/w==\"\n"))
+      << all_diags();
+  emit("texture");
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, ".base_color_map` is an inline texture");
+  accept_all_diags();
+}
+
 }  // namespace
