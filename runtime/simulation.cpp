@@ -33,6 +33,7 @@ Input Simulation::input(std::string_view name) {
 }
 Output Simulation::output(std::string_view name) {
   const int index = state_->find(name, false);
+  state_->request_output(index);
   const ResolvedSignal& s = state_->signals[static_cast<size_t>(index)];
   return Output(state_.get(), index, s.direct, s.scale, s.direct3);
 }

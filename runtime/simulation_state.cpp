@@ -177,6 +177,7 @@ void SimulationState::step() {
   }
   mj_step2(m, d);
   cache_limit_forces();
+  if (!post_step_signals.empty()) compute_post_step();
   if (kinematic) {
     const mjtNum h = m->opt.timestep;
     for (int k = 0; k < m->nmocap; ++k) {
@@ -204,6 +205,35 @@ void SimulationState::cache_limit_forces() {
       if (d->efc_type[r] == mjCNSTR_LIMIT_JOINT && d->efc_id[r] == joint) total += d->efc_force[r];
     }
     limit_forces[static_cast<size_t>(index)] = total;
+  }
+}
+
+// Mate forces: the interaction force MuJoCo computes between the MuJoCo child and its parent
+// (cfrc_int, after mj_rnePostConstraint), at the connector's site, in world axes. Computed only for outputs a
+// caller asked for, and between mj_step2 and the next mj_step1, while the constraint forces are current.
+void SimulationState::request_output(int index) {
+  const mjcf::SignalBinding& b = signals[static_cast<size_t>(index)].binding;
+  const bool computed = b.quantity == Quantity::MateForce || b.quantity == Quantity::MateTorque;
+  if (!computed ||
+      std::find(post_step_signals.begin(), post_step_signals.end(), index) != post_step_signals.end())
+    return;
+  post_step_signals.push_back(index);
+  post_step.resize(signals.size(), Eigen::Vector3d::Zero());
+  compute_post_step();  // the state at load (mj_forward) is consistent too
+}
+
+void SimulationState::compute_post_step() {
+  mj_rnePostConstraint(m, d);
+  for (int index : post_step_signals) {
+    const ResolvedSignal& s = signals[static_cast<size_t>(index)];
+    const int site = s.ids.front(), body = m->site_bodyid[site];
+    const Eigen::Vector3d torque = vec(d->cfrc_int + 6 * body), force = vec(d->cfrc_int + 6 * body + 3);
+    // cfrc_int's torque is about the subtree centre of mass of the body's root; move it to the site.
+    const Eigen::Vector3d lever =
+        vec(d->subtree_com + 3 * m->body_rootid[body]) - vec(d->site_xpos + 3 * site);
+    const Eigen::Vector3d value =
+        s.binding.quantity == Quantity::MateForce ? force : Eigen::Vector3d(torque + lever.cross(force));
+    post_step[static_cast<size_t>(index)] = s.binding.sign * value;
   }
 }
 
@@ -340,10 +370,9 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       return;
     case Quantity::MateForce:
     case Quantity::MateTorque: {
-      const mjtNum* local = from_sensor("a mate force");  // site axes; turn into world axes
-      mjtNum world[3];
-      mju_mulMatVec(world, d->site_xmat + 9 * id, local, 3, 3);
-      put(b.sign * vec(world));
+      // Computed after each step (request_output), in the frame of the step that produced it; the sensor
+      // holds the same force in site axes, but the site has moved on by the time a caller reads it.
+      put(post_step[static_cast<size_t>(index)]);
       return;
     }
     case Quantity::Constant:

@@ -40,6 +40,8 @@ struct SimulationState {
   bool stale = false;                // an input changed what mj_step1 computes: redo it before the next step
   std::vector<int> limit_signals;    // signals reading joint-limit forces
   std::vector<double> limit_forces;  // per signal: the limit force of the step just taken
+  std::vector<int> post_step_signals;      // requested outputs computed after each step (no sensor)
+  std::vector<Eigen::Vector3d> post_step;  // per signal: their values
 
   SimulationState() = default;
   SimulationState(const SimulationState&) = delete;
@@ -50,6 +52,8 @@ struct SimulationState {
   int find(std::string_view name, bool input) const;  // throws SignalError
   void step();
   void cache_limit_forces();
+  void request_output(int index);  // Simulation::output() asked for it: start computing it if it needs to be
+  void compute_post_step();
 
   // Checked access: throws SignalError when the value kind does not fit the signal.
   void write(int index, const double* values, int count, ValueType given);

@@ -152,4 +152,34 @@ TEST(RuntimeApi, VelocityOutputsMatchMuJoCo) {
   EXPECT_LT((w.vec3() - Eigen::Vector3d(expected[0], expected[1], expected[2])).norm(), 1e-12);
 }
 
+// Mate force and torque outputs, enabled or not: a 2 kg, 1 m rod held level by a hinge about z at its end
+// takes m g = 19.62 N up and, about the hinge, the torque m g L / 2 = 9.81 N m about -y (connectors[0] is the
+// world, so the values are what the world exerts on the rod).
+TEST(RuntimeApi, MateForceAndTorqueOutputs) {
+  const std::string path = write("level_rod.openplx",
+                                 "Rod is Physics3D.Bodies.RigidBody:\n"
+                                 "    inertia.mass: 2\n"
+                                 "    geometry is Physics3D.Geometries.Box:\n"
+                                 "        size: {1, 0.05, 0.05}\n"
+                                 "    end is Physics3D.Interactions.MateConnector:\n"
+                                 "        position.x: -0.5\n"
+                                 "        main_axis: Math.Vec3.Z_AXIS()\n"
+                                 "        normal: Math.Vec3.X_AXIS()\n"
+                                 "Scene is Physics3D.System:\n"
+                                 "    pivot is Physics3D.Interactions.MateConnector:\n"
+                                 "        main_axis: Math.Vec3.Z_AXIS()\n"
+                                 "        normal: Math.Vec3.X_AXIS()\n"
+                                 "    rod is Rod\n"
+                                 "    hinge is Physics3D.Interactions.Hinge:\n"
+                                 "        connectors: [pivot, rod.end]\n"
+                                 "        force_output.enabled: true\n");
+  rt::Simulation sim = rt::Simulation::load(path);
+  rt::Output force = sim.output("hinge.force_output");    // enabled: also a MuJoCo sensor
+  rt::Output torque = sim.output("hinge.torque_output");  // not enabled: computed all the same
+  sim.advance(0.5);
+  const double g = 9.81;
+  EXPECT_LT((force.vec3() - Eigen::Vector3d(0, 0, 2 * g)).norm(), 1e-4) << force.vec3().transpose();
+  EXPECT_LT((torque.vec3() - Eigen::Vector3d(0, -g, 0)).norm(), 1e-4) << torque.vec3().transpose();
+}
+
 }  // namespace
