@@ -58,7 +58,7 @@ struct Bridge {
   rt::Simulation sim;
   std::vector<rt::Input> inputs;
   std::vector<rt::Output> outputs;
-  std::vector<bool> vector_output;
+  std::vector<rt::ValueType> types;
 };
 
 Bridge make_bridge(const std::string& file, bool set_inputs, bool only_enabled, bool read_outputs) {
@@ -72,7 +72,7 @@ Bridge make_bridge(const std::string& file, bool set_inputs, bool only_enabled, 
   for (const rt::SignalInfo& s : b.sim.outputs()) {
     if (!s.mapped || (only_enabled && !s.enabled)) continue;
     b.outputs.push_back(b.sim.output(s.name));
-    b.vector_output.push_back(s.value == rt::ValueType::Vec3);
+    b.types.push_back(s.value);
   }
   return b;
 }
@@ -113,31 +113,51 @@ int main() {
       }
       b.sim.step();
       for (size_t i = 0; i < b.outputs.size(); ++i) {
-        sink += b.vector_output[i] ? b.outputs[i].vec3().x() : b.outputs[i].real();
+        switch (b.types[i]) {
+          case rt::ValueType::Vec3:
+            sink += b.outputs[i].vec3().x();
+            break;
+          case rt::ValueType::Vec2:
+            sink += b.outputs[i].vec2().x();
+            break;
+          case rt::ValueType::Bool:
+            sink += b.outputs[i].boolean();
+            break;
+          default:
+            sink += b.outputs[i].real();
+            break;
+        }
       }
     }
     return seconds_since(start);
   };
-  auto bare = [&]() {
+  // Bare MuJoCo; with `forces`, also the constraint-force pass a MuJoCo force/torque sensor makes mj_step
+  // run.
+  auto bare = [&](bool forces) {
     mj_resetData(m, d);
     const auto start = std::chrono::steady_clock::now();
     for (int k = 0; k < kSteps; ++k) {
       for (int i = 0; i < m->nu; ++i) d->ctrl[i] = 0.01 * (i & 3);
       mj_step(m, d);
+      if (forces) mj_rnePostConstraint(m, d);
     }
     return seconds_since(start);
   };
-  double best[4] = {1e9, 1e9, 1e9, 1e9};
+  double best[5] = {1e9, 1e9, 1e9, 1e9, 1e9};
   for (int round = 0; round < 3; ++round) {  // interleaved; the best of three of each
-    best[0] = std::min(best[0], bare());
+    best[0] = std::min(best[0], bare(false));
     for (int r = 0; r < 3; ++r) best[r + 1] = std::min(best[r + 1], bridge(runs[r]));
+    best[4] = std::min(best[4], bare(true));
   }
   std::printf("model: 20 hinges with torque motors, %d bodies, %d steps, best of 3 interleaved runs\n",
               m->nbody - 1, kSteps);
   const char* rows[] = {"bare mj_step (ctrl written)", "runtime step() only",
-                        "runtime, inputs + enabled outputs", "runtime, inputs + all outputs"};
-  for (int r = 0; r < 4; ++r) {
-    const size_t in = r >= 2 ? runs[r - 1].inputs.size() : 0, out = r >= 1 ? runs[r - 1].outputs.size() : 0;
+                        "runtime, inputs + enabled outputs", "runtime, inputs + all outputs",
+                        "bare mj_step + mj_rnePostConstraint"};
+  for (int r = 0; r < 5; ++r) {
+    const bool bridged = r >= 1 && r <= 3;
+    const size_t in = bridged && r >= 2 ? runs[r - 1].inputs.size() : 0;
+    const size_t out = bridged ? runs[r - 1].outputs.size() : 0;
     std::printf("%-36s %3zu in %3zu out %8.3f s %7.2f us/step  ratio %.3f\n", rows[r], in, out, best[r],
                 1e6 * best[r] / kSteps, best[r] / best[0]);
   }
