@@ -10,6 +10,24 @@ namespace {
 namespace fe = openplx::frontend;
 using Meshes = openplx::testing::MjcfTest;
 
+// A 1 kg, 1 m rod hanging from a hinge about y at its top; tests append lines to the hinge's block.
+const char* const kRodOnHinge =
+    "Rod is Physics3D.Bodies.RigidBody:\n"
+    "    inertia.mass: 1\n"
+    "    geometry is Physics3D.Geometries.Box:\n"
+    "        size: {0.05, 0.05, 1}\n"
+    "    top is Physics3D.Interactions.MateConnector:\n"
+    "        position.z: 0.5\n"
+    "        main_axis: Math.Vec3.Y_AXIS()\n"
+    "        normal: Math.Vec3.Z_AXIS()\n"
+    "Scene is Physics3D.System:\n"
+    "    pivot is Physics3D.Interactions.MateConnector:\n"
+    "        main_axis: Math.Vec3.Y_AXIS()\n"
+    "        normal: Math.Vec3.Z_AXIS()\n"
+    "    rod is Rod\n"
+    "    hinge is Physics3D.Interactions.Hinge:\n"
+    "        connectors: [pivot, rod.top]\n";
+
 // A 0.2 m cube given by its 8 corners, uniform density 1000 kg/m^3 (the default): 8 kg, I = m a^2 / 6.
 TEST_F(Meshes, ConvexMeshByVerticesHasTheMassOfItsVolume) {
   ASSERT_TRUE(
@@ -67,23 +85,10 @@ TEST_F(Meshes, TooFewVerticesAreLeftOutWithAWarning) {
 }
 
 TEST_F(Meshes, MateFlexibilityIsReportedAtTheMate) {
-  ASSERT_TRUE(
-      load("Rod is Physics3D.Bodies.RigidBody:\n"
-           "    inertia.mass: 1\n"
-           "    geometry is Physics3D.Geometries.Box:\n"
-           "        size: {0.05, 0.05, 1}\n"
-           "    top is Physics3D.Interactions.MateConnector:\n"
-           "        position.z: 0.5\n"
-           "        main_axis: Math.Vec3.Y_AXIS()\n"
-           "        normal: Math.Vec3.Z_AXIS()\n"
-           "Scene is Physics3D.System:\n"
-           "    pivot is Physics3D.Interactions.MateConnector:\n"
-           "        main_axis: Math.Vec3.Y_AXIS()\n"
-           "        normal: Math.Vec3.Z_AXIS()\n"
-           "    rod is Rod\n"
-           "    hinge is Physics3D.Interactions.Hinge:\n"
-           "        connectors: [pivot, rod.top]\n"
-           "        flexibility becomes Physics3D.Interactions.Flexibility.LinearElasticHingeFlexibility\n"))
+  ASSERT_TRUE(load(
+      kRodOnHinge +
+      std::string(
+          "        flexibility becomes Physics3D.Interactions.Flexibility.LinearElasticHingeFlexibility\n")))
       << all_diags();
   emit("soft");
   EXPECT_EQ(
@@ -105,25 +110,7 @@ TEST_F(Meshes, ConstantNormalForceFrictionBecomesFrictionloss) {
                    "            coefficient: 0.5\n"
                    "            normal_force: 4\n"
                  : "        friction becomes Physics.Interactions.Dissipation.DryConeFriction\n";
-    ASSERT_TRUE(
-        load("Rod is Physics3D.Bodies.RigidBody:\n"
-             "    inertia.mass: 1\n"
-             "    geometry is Physics3D.Geometries.Box:\n"
-             "        size: {0.05, 0.05, 1}\n"
-             "    top is Physics3D.Interactions.MateConnector:\n"
-             "        position.z: 0.5\n"
-             "        main_axis: Math.Vec3.Y_AXIS()\n"
-             "        normal: Math.Vec3.Z_AXIS()\n"
-             "Scene is Physics3D.System:\n"
-             "    pivot is Physics3D.Interactions.MateConnector:\n"
-             "        main_axis: Math.Vec3.Y_AXIS()\n"
-             "        normal: Math.Vec3.Z_AXIS()\n"
-             "    rod is Rod\n"
-             "    hinge is Physics3D.Interactions.Hinge:\n"
-             "        connectors: [pivot, rod.top]\n"
-             "        initial_angle: 0.3\n" +
-             friction))
-        << all_diags();
+    ASSERT_TRUE(load(kRodOnHinge + std::string("        initial_angle: 0.3\n") + friction)) << all_diags();
     const std::string path = emit(constant ? "friction" : "cone");
     if (!constant) {
       expect_diag_containing(fe::DiagCode::MjcfUnmapped,
