@@ -1,5 +1,7 @@
 #include "frontend/import_plugins.h"
 
+#include "frontend/urdf/urdf_import.h"
+
 #include <algorithm>
 #include <filesystem>
 
@@ -27,10 +29,7 @@ std::optional<std::string> import_plugin_source(const std::string& path, const s
         "equivalent; export the model to OpenPLX or URDF instead";
     return std::nullopt;
   }
-  if (extension == ".urdf") {
-    error = "URDF import is not available yet (it arrives with the URDF issue): " + path;
-    return std::nullopt;
-  }
+  if (extension == ".urdf") return urdf_to_openplx(path, model_name, error);
   error = "No plugin registered for extension '" + extension + "'";
   return std::nullopt;
 }

@@ -1,16 +1,34 @@
 #include "frontend/pipeline.h"
 
+#include <algorithm>
+#include <filesystem>
+
 #include "frontend/bundles.h"
 #include "frontend/large_stack.h"
 
 namespace openplx::frontend {
 
+namespace fs = std::filesystem;
+
 Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, DiagnosticSink& sink) {
   Evaluation result;
   result.program = std::make_unique<Program>(sources, sink);
   result.program->set_bundles(discover_bundles(bundle_search_path(request.bundle_dirs), sources, sink));
-  result.document = request.text ? result.program->load_text(request.path, *request.text)
-                                 : result.program->load_main(request.path);
+  // A URDF given directly is read as a one-line document importing it, rooted at a model of the robot's name
+  // (the file's stem), so the command line and the runtime take robots like any OpenPLX file.
+  const fs::path file(request.path);
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (!request.text && extension == ".urdf") {
+    const std::string robot = file.stem().string();
+    const std::string text = "import @\"" + fs::absolute(file).lexically_normal().generic_string() + "\"\n`" +
+                             robot + "_robot` is `" + robot + "`\n";
+    result.document = result.program->load_text(request.path + ".openplx", text);
+  } else {
+    result.document = request.text ? result.program->load_text(request.path, *request.text)
+                                   : result.program->load_main(request.path);
+  }
   if (!result.document) return result;
   const bool syntax_errors = sink.has_errors();
   ModelInfo* root_model =

@@ -397,14 +397,14 @@ class Emitter {
     const bool tensor_given = !n.body.inertia.isZero();
     if (n.body.mass > 0 && tensor_given) {
       const Eigen::Matrix3d r = n.body.cm.rotation.toRotationMatrix();
-      body_mass_[node] = {n.body.mass, n.body.cm.position, r * n.body.inertia * r.transpose()};
+      // The tensor turned into the body's axes: MJCF takes fullinertia or a quat, never both.
+      const Eigen::Matrix3d i = r * n.body.inertia * r.transpose();
+      body_mass_[node] = {n.body.mass, n.body.cm.position, i};
       body.add("inertial")
           .set("pos", n.body.cm.position)
-          .set_quat("quat", n.body.cm.rotation)
           .set("mass", n.body.mass)
-          .set("fullinertia", number(n.body.inertia(0, 0)) + " " + number(n.body.inertia(1, 1)) + " " +
-                                  number(n.body.inertia(2, 2)) + " " + number(n.body.inertia(0, 1)) + " " +
-                                  number(n.body.inertia(0, 2)) + " " + number(n.body.inertia(1, 2)));
+          .set("fullinertia", number(i(0, 0)) + " " + number(i(1, 1)) + " " + number(i(2, 2)) + " " +
+                                  number(i(0, 1)) + " " + number(i(0, 2)) + " " + number(i(1, 2)));
       return;
     }
     std::vector<std::pair<const sn::Geometry*, double>> parts;
