@@ -62,6 +62,7 @@ class Emitter {
     emit_bodies(world);
     emit_loop_closures(root);
     emit_drivetrain(root);
+    emit_joint_couplings(root);
     emit_contact_pairs(root);
     emit_actuators(root);
     bind_signals(root, out.signals);
@@ -851,6 +852,34 @@ class Emitter {
   // values), a differential ties its three shafts with a fixed tendon held at its initial length:
   // w_drive = gear_ratio (w_left + w_right) / 2. Gears: ratio = input speed / output speed (UNCONFIRMED for
   // AGX; the corpus only uses -1, where both readings agree).
+  // Joints that follow another (URDF mimic): a joint equality, follower = offset + multiplier * leader
+  // (MuJoCo measures both from the initial configuration).
+  void emit_joint_couplings(Element& root) {
+    Element* equality = nullptr;
+    for (const std::unique_ptr<Element>& e : root.children()) {
+      if (e->name() == "equality") equality = e.get();
+    }
+    for (const sn::JointCoupling& c : view_.joint_couplings) {
+      auto joint = [&](int mate) -> Element* {
+        if (mate < 0 || !tree_mates_.count(mate)) return nullptr;
+        return joint_for(mate, view_.mates[mate].type != sn::MateType::Prismatic);
+      };
+      Element* follower = joint(c.follower);
+      Element* leader = joint(c.leader);
+      if (!follower || !leader || follower == leader) {
+        warn(c.where, "`" + c.path +
+                          "` does not couple two hinge or prismatic joints of MuJoCo's tree; it was "
+                          "left out");
+        continue;
+      }
+      equality->add("joint")
+          .set("name", name(c.path))
+          .set("joint1", *follower->get("name"))
+          .set("joint2", *leader->get("name"))
+          .set("polycoef", number(c.offset) + " " + number(c.multiplier) + " 0 0 0");
+    }
+  }
+
   void emit_drivetrain(Element& root) {
     if (view_.shafts.empty()) return;
     for (const sn::Shaft& shaft : view_.shafts) {

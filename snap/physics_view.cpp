@@ -29,6 +29,7 @@ class ViewBuilder {
     differential_ = program.builtin_model("DriveTrain.Differential");
     drive_actuator_ = program.builtin_model("DriveTrain.Actuator");
     motor1d_ = program.builtin_model("Physics1D.Interactions.RotationalVelocityMotor");
+    mimic_ = program.builtin_model("Urdf.Mimic");
     // Drivetrain parts beyond shafts, gears, differentials, hinge/prismatic actuators and rotational velocity
     // motors are not mapped: each gets its warning instead of vanishing, as do collision-group filters.
     for (const char* name :
@@ -157,6 +158,10 @@ class ViewBuilder {
         view_.contact_models.push_back(
             {id, ev_.graph().path(id), object(id, "material_1"), object(id, "material_2"), where_of(id)});
         break;
+      case Role::Kind::Mimic:
+        view_.joint_couplings.push_back({id, ev_.graph().path(id), -1, -1, real(id, "multiplier", 1.0),
+                                         real(id, "offset", 0.0), where_of(id)});
+        break;
       case Role::Kind::None:
         break;
     }
@@ -182,7 +187,8 @@ class ViewBuilder {
       Interaction,
       Signal,
       VisualMaterial,
-      ContactModel
+      ContactModel,
+      Mimic
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
@@ -199,7 +205,8 @@ class ViewBuilder {
     }
     auto sub = [&](const fe::ModelInfo* m) { return m && type->is_subtype_of(m); };
     using K = Role::Kind;
-    role.kind = sub(shaft_)                                                ? K::Shaft
+    role.kind = sub(mimic_)                                                ? K::Mimic
+                : sub(shaft_)                                              ? K::Shaft
                 : sub(gear_) || sub(differential_) || sub(drive_actuator_) ? K::Coupling
                 : sub(system_) || sub(body_)                               ? K::Node
                 : sub(connector_)                                          ? K::Connector
@@ -341,6 +348,13 @@ class ViewBuilder {
           }
           break;
         }
+      }
+    }
+    for (JointCoupling& c : view_.joint_couplings) {
+      const fe::ObjectId follower = object(c.object, "follower"), leader = object(c.object, "leader");
+      for (size_t m = 0; m < view_.mates.size(); ++m) {
+        if (view_.mates[m].object == follower) c.follower = static_cast<int>(m);
+        if (view_.mates[m].object == leader) c.leader = static_cast<int>(m);
       }
     }
     for (Interaction1D& i : view_.interactions) {
@@ -583,6 +597,7 @@ class ViewBuilder {
   fe::ModelInfo* differential_ = nullptr;
   fe::ModelInfo* drive_actuator_ = nullptr;
   fe::ModelInfo* motor1d_ = nullptr;
+  fe::ModelInfo* mimic_ = nullptr;
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;

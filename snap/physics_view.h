@@ -156,6 +156,15 @@ struct DriveCoupling {
   frontend::SourceRange where;
 };
 
+// A joint that follows another (Urdf.Mimic): follower = multiplier * leader + offset.
+struct JointCoupling {
+  frontend::ObjectId object;
+  std::string path;
+  int follower = -1, leader = -1;  // mate indices
+  double multiplier = 1.0, offset = 0.0;
+  frontend::SourceRange where;
+};
+
 struct PhysicsView {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
@@ -169,6 +178,7 @@ struct PhysicsView {
       visual_materials;  // Visuals.Materials.Material instances, the root included
   std::vector<Shaft> shafts;
   std::vector<DriveCoupling> couplings;
+  std::vector<JointCoupling> joint_couplings;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;

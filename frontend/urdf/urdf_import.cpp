@@ -247,6 +247,13 @@ std::optional<std::string> urdf_to_openplx(const std::string& path, const std::s
              "\n";
     }
   }
+  for (const auto& joint : joints) {
+    if (!joint->mimic || robot->joints_.count(joint->mimic->joint_name) == 0) continue;
+    out += "    " + id(joint->name + "_mimic") + " is Urdf.Mimic:\n        follower: " + id(joint->name) +
+           "\n        leader: " + id(joint->mimic->joint_name) +
+           "\n        multiplier: " + num(joint->mimic->multiplier) +
+           "\n        offset: " + num(joint->mimic->offset) + "\n";
+  }
   return out;
 }
 

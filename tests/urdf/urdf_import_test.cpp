@@ -70,4 +70,27 @@ TEST(UrdfImport, ExtendedUrdfRobotIsDrivenByTheRuntime) {
   EXPECT_GT(std::abs(tilt_angle.real()), 0.1);  // the 8 kg link, 5 m out, falls about the tilt axis
 }
 
+// widowx's second gripper finger mimics the first (multiplier 1): a joint equality keeps them together while
+// a force drives the leader. MuJoCo's own URDF compiler drops <mimic> (and rejects widowx's massless links).
+TEST(UrdfImport, MimicJointFollowsItsLeader) {
+  rt::Simulation sim = rt::Simulation::load((kUrdf / "bullet3" / "widowx" / "widowx.urdf").string());
+  const mjModel* m = sim.model();
+  const int leader = mj_name2id(m, mjOBJ_JOINT, "gripper_prismatic_joint_1");
+  const int follower = mj_name2id(m, mjOBJ_JOINT, "gripper_prismatic_joint_2");
+  ASSERT_GE(leader, 0);
+  ASSERT_GE(follower, 0);
+  EXPECT_GE(mj_name2id(m, mjOBJ_EQUALITY, "gripper_prismatic_joint_2_mimic"), 0);
+  mjData* d = sim.data();
+  double moved = 0;
+  for (int k = 0; k < 200; ++k) {
+    d->qfrc_applied[m->jnt_dofadr[leader]] = 0.5;
+    sim.step();
+    const double q1 = d->qpos[m->jnt_qposadr[leader]], q2 = d->qpos[m->jnt_qposadr[follower]];
+    moved = std::max(moved, std::abs(q1));
+    // The equality is soft (MuJoCo's default solref): it holds the pair within a millimetre.
+    EXPECT_NEAR(q2, q1, 1e-3) << "step " << k;
+  }
+  EXPECT_GT(moved, 1e-3);  // the leader did move
+}
+
 }  // namespace
