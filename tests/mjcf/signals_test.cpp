@@ -72,7 +72,9 @@ TEST_F(Signals, EveryCorpusSignalHasOneBindingWhoseElementsExistInMuJoCo) {
       }
       ++mapped;
       for (const std::string& element : b.names) EXPECT_GE(id(m, b.object, element), 0) << element;
-      if (!b.sensor.empty()) EXPECT_GE(mj_name2id(m, mjOBJ_SENSOR, b.sensor.c_str()), 0);
+      if (!b.sensor.empty()) {
+        EXPECT_GE(mj_name2id(m, mjOBJ_SENSOR, b.sensor.c_str()), 0);
+      }
       if (!b.input && b.enabled && b.quantity != Q::Ctrl && b.quantity != Q::ForceRange &&
           b.quantity != Q::Constant && b.quantity != Q::EqualityActive && b.quantity != Q::SpringRest &&
           b.quantity != Q::SpringForce) {
