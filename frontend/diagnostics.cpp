@@ -71,15 +71,16 @@ void DiagnosticSink::sort_by_position(size_t first) {
 
 void print_diagnostic(std::ostream& out, const SourceManager& sources, const Diagnostic& diag) {
   const bool located = diag.range.file != kNoFile && diag.range.file < sources.size();
+  const SourceRange range = located ? sources.user_range(diag.range) : diag.range;
   if (located) {
-    const SourceFile& file = sources.file(diag.range.file);
-    LineCol pos = file.line_col(diag.range.begin);
+    const SourceFile& file = sources.file(range.file);
+    LineCol pos = file.line_col(range.begin);
     out << file.path() << ':' << pos.line << ':' << pos.col << ": ";
   }
   out << severity_name(diag.severity) << ": " << diag.message << " [" << code_name(diag.code) << "]\n";
   if (located) {
-    const SourceFile& file = sources.file(diag.range.file);
-    LineCol pos = file.line_col(diag.range.begin);
+    const SourceFile& file = sources.file(range.file);
+    LineCol pos = file.line_col(range.begin);
     std::string_view line = file.line_text(pos.line);
     out << "  " << line << "\n  ";
     // Keep tabs under tabs so the caret lines up whatever the terminal's tab width.

@@ -1,7 +1,5 @@
 #include "frontend/import_plugins.h"
 
-#include "frontend/urdf/urdf_import.h"
-
 #include <algorithm>
 #include <filesystem>
 
@@ -29,7 +27,6 @@ std::optional<std::string> import_plugin_source(const std::string& path, const s
         "equivalent; export the model to OpenPLX or URDF instead";
     return std::nullopt;
   }
-  if (extension == ".urdf") return urdf_to_openplx(path, model_name, error);
   error = "No plugin registered for extension '" + extension + "'";
   return std::nullopt;
 }

@@ -8,6 +8,7 @@
 #include "frontend/edit_distance.h"
 #include "frontend/import_plugins.h"
 #include "frontend/parser.h"
+#include "frontend/urdf/urdf_import.h"
 
 namespace openplx::frontend {
 namespace fs = std::filesystem;
@@ -210,21 +211,54 @@ void Program::process_imports(DocumentInfo* doc) {
       }
       continue;
     }
-    std::string error;
-    std::optional<std::string> source = import_plugin_source(path, alias, error);
-    if (!source) {
-      sink_.report(DiagCode::UnsupportedImport, decl.range, error);
-      continue;
+    std::optional<std::string> source;
+    std::vector<std::string> names{alias};
+    std::optional<UrdfSource> urdf;
+    if (extension == ".urdf") {
+      urdf = read_urdf(path, alias, decl.range);
+      if (!urdf) continue;
+      source = urdf->text;
+      // `import @"robot.urdf"` also names the robot after <robot name>, as OpenPLX documents it.
+      if (!decl.alias && !urdf->robot_name.empty()) names.push_back(urdf->robot_name);
+    } else {
+      std::string error;
+      source = import_plugin_source(path, alias, error);
+      if (!source) {
+        sink_.report(DiagCode::UnsupportedImport, decl.range, error);
+        continue;
+      }
     }
     // The plugin describes the imported asset as OpenPLX text; it is read like any other document, in a
     // scope of its own, and its one model becomes visible under the alias.
     FileId id = sources_.add("<import " + path + ">", *source);
+    if (urdf) sources_.set_origin(id, urdf->file, std::move(urdf->line_origins));
     Namespace* ns = new_namespace("", nullptr, "", nullptr);
     load_document(id, ns, nullptr);
     if (auto it = ns->symbols.find(alias); it != ns->symbols.end() && it->second.model) {
-      doc->import_models[alias] = it->second.model;
+      for (const std::string& name : names) doc->import_models.try_emplace(name, it->second.model);
     }
   }
+}
+
+// Reads and converts an imported URDF; its findings are reported in the URDF itself. nullopt when it was
+// rejected (an error was reported).
+std::optional<Program::UrdfSource> Program::read_urdf(const std::string& path, const std::string& model,
+                                                      SourceRange import_range) {
+  std::string error;
+  std::optional<FileId> file = sources_.load(path, error);
+  if (!file) {
+    sink_.report(DiagCode::ImportNotFound, import_range,
+                 "Could not read imported file " + path + ": " + error);
+    return std::nullopt;
+  }
+  UrdfImport urdf = import_urdf(path, std::string(sources_.file(*file).text()), model);
+  for (const UrdfFinding& f : urdf.findings) {
+    Diagnostic& d = sink_.report(f.error ? DiagCode::UrdfInvalid : DiagCode::UrdfWarning,
+                                 SourceRange{*file, f.offset, f.offset + 1}, f.message);
+    d.notes.insert(d.notes.end(), f.notes.begin(), f.notes.end());
+  }
+  if (!urdf.text) return std::nullopt;
+  return UrdfSource{*file, std::move(*urdf.text), std::move(urdf.line_origins), std::move(urdf.robot_name)};
 }
 
 DocumentInfo* Program::load_main(const std::string& path) {
@@ -353,6 +387,11 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
 }
 
 Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report) {
+  // `import $"robot.urdf" as robots.arm` names the imported model with a dotted alias.
+  if (name.parts.size() > 1) {
+    if (auto it = doc->import_models.find(to_string(name)); it != doc->import_models.end())
+      return Symbol{it->second};
+  }
   Symbol s = lookup(doc, name.parts[0].text, name.parts[0].range, report);
   for (size_t i = 1; s && i < name.parts.size(); ++i) {
     if (!s.ns) {

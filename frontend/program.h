@@ -157,6 +157,14 @@ class Program {
   DocumentInfo* load_document(FileId file, Namespace* ns, const BundleConfig* bundle);
   void declare(DocumentInfo* doc, Namespace* ns);
   void process_imports(DocumentInfo* doc);
+  struct UrdfSource {
+    FileId file;  // the URDF itself
+    std::string text;
+    std::vector<uint32_t> line_origins;
+    std::string robot_name;
+  };
+  std::optional<UrdfSource> read_urdf(const std::string& path, const std::string& model,
+                                      SourceRange import_range);
   Namespace* new_namespace(std::string name, Namespace* parent, std::string dir, const BundleConfig* bundle);
   void flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix);
   bool bundle_visible(DocumentInfo* from, const BundleConfig* target) const;

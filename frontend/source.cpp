@@ -68,4 +68,18 @@ FileId SourceManager::add(std::string path, std::string text) {
   return static_cast<FileId>(files_.size() - 1);
 }
 
+void SourceManager::set_origin(FileId generated, FileId origin, std::vector<uint32_t> offsets) {
+  if (origins_.size() <= generated) origins_.resize(generated + 1, Origin{kNoFile, {}});
+  origins_[generated] = {origin, std::move(offsets)};
+}
+
+SourceRange SourceManager::user_range(SourceRange range) const {
+  if (range.file >= origins_.size() || origins_[range.file].file == kNoFile) return range;
+  const Origin& origin = origins_[range.file];
+  const uint32_t line = file(range.file).line_col(range.begin).line;
+  if (line == 0 || line > origin.offsets.size()) return range;
+  const uint32_t at = origin.offsets[line - 1];
+  return {origin.file, at, at + 1};
+}
+
 }  // namespace openplx::frontend

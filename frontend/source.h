@@ -55,8 +55,19 @@ class SourceManager {
   const SourceFile& file(FileId id) const { return *files_.at(id); }
   size_t size() const { return files_.size(); }
 
+  // Generated text (a URDF import) whose line k came from byte `origins[k-1]` of file `origin`: positions in
+  // it are reported at the origin, where the user can act on them.
+  void set_origin(FileId generated, FileId origin, std::vector<uint32_t> origins);
+  // `range` itself, or the place in an origin file that its generated line came from.
+  SourceRange user_range(SourceRange range) const;
+
  private:
+  struct Origin {
+    FileId file;
+    std::vector<uint32_t> offsets;
+  };
   std::vector<std::unique_ptr<SourceFile>> files_;  // stable addresses: views point into them
+  std::vector<Origin> origins_;                     // by FileId; file == kNoFile when not generated
 };
 
 }  // namespace openplx::frontend

@@ -731,6 +731,9 @@ class Emitter {
     std::map<Element*, std::pair<double, double>> ranges;
     std::map<Element*, std::pair<double, double>> springs;  // sum k, sum k * rest
     std::map<Element*, double> dampings;
+    for (const sn::JointProperties& p : view_.joint_properties) {
+      if (p.mate >= 0) joint_properties_[p.mate] = &p;
+    }
     for (const sn::Interaction1D& i : view_.interactions) {
       const bool velocity = i.kind == K::LinearVelocityMotor || i.kind == K::RotationalVelocityMotor;
       if (!velocity || i.mate < 0 || !tree_mates_.count(i.mate)) continue;
@@ -792,6 +795,7 @@ class Emitter {
           Element& a = actuators.add("velocity");
           a.set("name", name(i.path)).set("joint", joint_name).set("kv", velocity_gain(gain, *joint, i));
           effort_limits(a, i);
+          speed_limit(a, i);
           actuator_ctrl_[i.object] = {static_cast<int>(actuator_count_++), real(i.object, "target_speed")};
           break;
         }
@@ -810,6 +814,7 @@ class Emitter {
           break;
       }
     }
+    apply_joint_properties(dampings);
     for (auto& [joint, range] : ranges) {
       if (range.first > range.second) {
         warn({}, "the ranges on joint " + *joint->get("name") + " do not overlap; the joint is locked at " +
@@ -825,7 +830,30 @@ class Emitter {
       for (auto& [object, info] : springs_) {
         if (info.joint == *joint->get("name")) info.joint_rest = rest;
       }
-      if (dampings[joint] > 0) joint->set("damping", dampings[joint]);
+    }
+    for (auto& [joint, damping] : dampings) {
+      if (damping > 0) joint->set("damping", damping);
+    }
+  }
+
+  // URDF <dynamics>: damping adds to the springs' own; friction becomes frictionloss (a constant Coulomb
+  // friction is exactly what MuJoCo's joint friction is), added to a mate friction already there.
+  void apply_joint_properties(std::map<Element*, double>& dampings) {
+    for (const sn::JointProperties& p : view_.joint_properties) {
+      if (p.mate < 0 || !tree_mates_.count(p.mate)) {
+        if (p.damping > 0 || p.friction > 0)
+          warn(p.where, "`" + p.path +
+                            "` (URDF dynamics) is on a mate that closes a loop or joins nothing; " +
+                            "MuJoCo's equality constraints have no damping or friction, so it was left out");
+        continue;
+      }
+      Element* joint = joint_for(p.mate, view_.mates[p.mate].type != sn::MateType::Prismatic);
+      if (!joint) continue;  // a Lock: nothing moves
+      if (p.damping > 0) dampings[joint] += p.damping;
+      if (p.friction > 0) {
+        const std::string* had = joint->get("frictionloss");
+        joint->set("frictionloss", p.friction + (had ? std::stod(*had) : 0.0));
+      }
     }
   }
 
@@ -1076,12 +1104,25 @@ class Emitter {
   }
 
   void effort_limits(Element& actuator, const sn::Interaction1D& i) {
-    const double lo = real(i.object, "min_effort", -INFINITY), hi = real(i.object, "max_effort", INFINITY);
+    double lo = real(i.object, "min_effort", -INFINITY), hi = real(i.object, "max_effort", INFINITY);
+    // A URDF effort limit bounds every motor on its joint, as the robot's actuator would.
+    if (auto it = joint_properties_.find(i.mate); it != joint_properties_.end() && it->second->effort > 0) {
+      lo = std::max(lo, -it->second->effort);
+      hi = std::min(hi, it->second->effort);
+    }
     // Always limited (±1e10 when the model gives no limit): every motor model has a range input, and the
     // runtime can tighten only a limited actuator.
     actuator.set("forcelimited", "true")
         .set("forcerange",
              number(std::isfinite(lo) ? lo : -1e10) + " " + number(std::isfinite(hi) ? hi : 1e10));
+  }
+
+  // A URDF velocity limit bounds the speed a velocity motor may be asked for (its control range).
+  void speed_limit(Element& actuator, const sn::Interaction1D& i) {
+    auto it = joint_properties_.find(i.mate);
+    if (it == joint_properties_.end() || it->second->velocity <= 0) return;
+    const double v = it->second->velocity;
+    actuator.set("ctrllimited", "true").set("ctrlrange", number(-v) + " " + number(v));
   }
 
   Element* joint_for(int mate, bool rotational) {
@@ -1425,6 +1466,7 @@ class Emitter {
   std::map<int, MassProperties> body_mass_;
   std::map<int, std::vector<int>> tree_children_;
   std::map<Element*, int> velocity_motors_;
+  std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
   std::set<std::string> emitted_geoms_;
   std::map<fe::ObjectId, std::string> material_names_;
   std::unordered_map<fe::ObjectId, int> mate_index_;

@@ -1,5 +1,7 @@
 #include "snap/physics_view.h"
 
+#include <filesystem>
+#include <map>
 #include <unordered_map>
 
 namespace openplx::snap {
@@ -30,6 +32,8 @@ class ViewBuilder {
     drive_actuator_ = program.builtin_model("DriveTrain.Actuator");
     motor1d_ = program.builtin_model("Physics1D.Interactions.RotationalVelocityMotor");
     mimic_ = program.builtin_model("Urdf.Mimic");
+    joint_properties_ = program.builtin_model("Urdf.JointProperties");
+    package_path_ = program.builtin_model("Urdf.PackagePath");
     // Drivetrain parts beyond shafts, gears, differentials, hinge/prismatic actuators and rotational velocity
     // motors are not mapped: each gets its warning instead of vanishing, as do collision-group filters.
     for (const char* name :
@@ -98,6 +102,7 @@ class ViewBuilder {
     for (Mate& mate : view_.mates) resolve_connectors(mate);
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
     resolve_drivetrain();
+    resolve_packages();
     return std::move(view_);
   }
 
@@ -162,6 +167,18 @@ class ViewBuilder {
         view_.joint_couplings.push_back({id, ev_.graph().path(id), -1, -1, real(id, "multiplier", 1.0),
                                          real(id, "offset", 0.0), where_of(id)});
         break;
+      case Role::Kind::JointProperties:
+        view_.joint_properties.push_back({id, ev_.graph().path(id), -1, real(id, "damping"),
+                                          real(id, "friction"), real(id, "effort"), real(id, "velocity"),
+                                          where_of(id)});
+        break;
+      case Role::Kind::PackagePath:
+        if (const fe::Value* name = ev_.value(id, "name"); name && name->kind == fe::Value::Kind::String) {
+          const fe::Value* dir = ev_.value(id, "path");
+          packages_[name->string_value] =
+              dir && dir->kind == fe::Value::Kind::String ? dir->string_value : "";
+        }
+        break;
       case Role::Kind::None:
         break;
     }
@@ -188,7 +205,9 @@ class ViewBuilder {
       Signal,
       VisualMaterial,
       ContactModel,
-      Mimic
+      Mimic,
+      JointProperties,
+      PackagePath
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
@@ -206,6 +225,8 @@ class ViewBuilder {
     auto sub = [&](const fe::ModelInfo* m) { return m && type->is_subtype_of(m); };
     using K = Role::Kind;
     role.kind = sub(mimic_)                                                ? K::Mimic
+                : sub(joint_properties_)                                   ? K::JointProperties
+                : sub(package_path_)                                       ? K::PackagePath
                 : sub(shaft_)                                              ? K::Shaft
                 : sub(gear_) || sub(differential_) || sub(drive_actuator_) ? K::Coupling
                 : sub(system_) || sub(body_)                               ? K::Node
@@ -286,6 +307,9 @@ class ViewBuilder {
     if (const fe::Value* path = ev_.value(id, "path"); path && path->kind == fe::Value::Kind::String) {
       g.file = path->string_value;
     }
+    if (const fe::Value* uri = ev_.value(id, "package_uri"); uri && uri->kind == fe::Value::Kind::String) {
+      g.package_uri = uri->string_value;
+    }
     if (const fe::Value* scale = ev_.value(id, "scale"); scale && scale->kind == fe::Value::Kind::Object) {
       g.scale = vec3(id, "scale");
     } else if (scale && scale->is_number()) {
@@ -314,6 +338,21 @@ class ViewBuilder {
   }
 
   // Drivetrain references: 1-D connectors belong to the shaft that owns them; actuators name a 3-D mate.
+  // A URDF mesh named `package://P/rest` is read from `<path>/rest` when the model declares a
+  // Urdf.PackagePath named P (anywhere: in the scene or in the robot); otherwise from where the import found
+  // P.
+  void resolve_packages() {
+    for (Geometry& g : view_.geometries) {
+      if (g.package_uri.rfind("package://", 0) != 0) continue;
+      const std::string rest = g.package_uri.substr(10);
+      const size_t slash = rest.find('/');
+      auto it = packages_.find(rest.substr(0, slash));
+      if (it == packages_.end()) continue;
+      const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
+      g.file = (std::filesystem::path(it->second) / inside).lexically_normal().generic_string();
+    }
+  }
+
   void resolve_drivetrain() {
     std::unordered_map<fe::ObjectId, int> shaft_of;
     for (size_t k = 0; k < view_.shafts.size(); ++k) shaft_of[view_.shafts[k].object] = static_cast<int>(k);
@@ -355,6 +394,12 @@ class ViewBuilder {
       for (size_t m = 0; m < view_.mates.size(); ++m) {
         if (view_.mates[m].object == follower) c.follower = static_cast<int>(m);
         if (view_.mates[m].object == leader) c.leader = static_cast<int>(m);
+      }
+    }
+    for (JointProperties& p : view_.joint_properties) {
+      const fe::ObjectId mate = object(p.object, "mate");
+      for (size_t m = 0; m < view_.mates.size(); ++m) {
+        if (view_.mates[m].object == mate) p.mate = static_cast<int>(m);
       }
     }
     for (Interaction1D& i : view_.interactions) {
@@ -598,6 +643,9 @@ class ViewBuilder {
   fe::ModelInfo* drive_actuator_ = nullptr;
   fe::ModelInfo* motor1d_ = nullptr;
   fe::ModelInfo* mimic_ = nullptr;
+  fe::ModelInfo* joint_properties_ = nullptr;
+  fe::ModelInfo* package_path_ = nullptr;
+  std::map<std::string, std::string> packages_;  // Urdf.PackagePath: package name -> folder
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;

@@ -54,6 +54,7 @@ struct Geometry {
       Eigen::Vector3d::Zero();  // box: full extents; sphere: (r); cylinder, capsule: (r, h)
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   std::string file;                       // external mesh
+  std::string package_uri;                // a URDF mesh's `package://` name, resolved into `file`
   std::vector<Eigen::Vector3d> vertices;  // ConvexMesh, TriMesh (in the geometry frame)
   std::vector<int> indices;               // TriMesh: three vertex indices per triangle
   frontend::ObjectId material = frontend::kNoObject;
@@ -165,6 +166,16 @@ struct JointCoupling {
   frontend::SourceRange where;
 };
 
+// What a URDF joint adds to its mate (Urdf.JointProperties): <dynamics> damping and Coulomb friction, and
+// the <limit> effort and velocity that bound the motors a user adds (0: none).
+struct JointProperties {
+  frontend::ObjectId object;
+  std::string path;
+  int mate = -1;
+  double damping = 0, friction = 0, effort = 0, velocity = 0;
+  frontend::SourceRange where;
+};
+
 struct PhysicsView {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
@@ -179,6 +190,7 @@ struct PhysicsView {
   std::vector<Shaft> shafts;
   std::vector<DriveCoupling> couplings;
   std::vector<JointCoupling> joint_couplings;
+  std::vector<JointProperties> joint_properties;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;

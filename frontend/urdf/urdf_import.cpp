@@ -5,15 +5,16 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
+#include <map>
 #include <sstream>
 
-#include "frontend/quoted.h"
+#include "frontend/urdf/physical_inertia.h"
 
 namespace openplx::frontend {
 namespace {
 
 namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
 
 std::string num(double v) {
   std::ostringstream out;
@@ -40,14 +41,6 @@ std::string id(const std::string& name) {
   return "`" + name + "`";
 }
 
-// `local_transform` (or another AffineTransform attribute) of a pose, at `indent`.
-std::string transform(const std::string& attribute, const Eigen::Vector3d& p, const Eigen::Quaterniond& q,
-                      const std::string& indent) {
-  return indent + attribute + ":\n" + indent + "    position: " + vec(p) + "\n" + indent +
-         "    rotation: Math.Quat.from_xyzw(" + num(q.x()) + ", " + num(q.y()) + ", " + num(q.z()) + ", " +
-         num(q.w()) + ")\n";
-}
-
 // A direction orthogonal to `axis`, for a connector's normal.
 Eigen::Vector3d normal_to(const Eigen::Vector3d& axis) {
   const Eigen::Vector3d a = axis.normalized();
@@ -55,15 +48,50 @@ Eigen::Vector3d normal_to(const Eigen::Vector3d& axis) {
   return (least - least.dot(a) * a).normalized();
 }
 
-std::string connector(const std::string& name, const Eigen::Vector3d& position, const Eigen::Vector3d& axis,
-                      const Eigen::Vector3d& normal) {
-  return "        " + id(name) +
-         " is Physics3D.Interactions.MateConnector:\n            position: " + vec(position) +
-         "\n            main_axis: " + vec(axis) + "\n            normal: " + vec(normal) + "\n";
+Eigen::Vector3d joint_axis(const urdf::Joint& joint) {
+  Eigen::Vector3d axis = to_eigen(joint.axis);
+  if (axis.squaredNorm() < 1e-24) axis = Eigen::Vector3d::UnitX();
+  return axis.normalized();
 }
 
-// A mesh file: relative names resolve against the URDF's folder; `package://P/rest` against the folder that
-// holds P next to (or above) the URDF.
+// Generated OpenPLX, one line at a time, each remembering the URDF byte offset it came from.
+class Writer {
+ public:
+  explicit Writer(const UrdfDocument& doc) : doc_(doc) {}
+  // Lines written from now on come from element `e` (the `<robot>` element when null).
+  void from(const XMLElement* e) { origin_ = doc_.offset_of(e ? e : doc_.robot()); }
+  void line(const std::string& text) {
+    out_ += text;
+    out_ += '\n';
+    origins_.push_back(origin_);
+  }
+  void transform(const std::string& attribute, const Eigen::Vector3d& p, const Eigen::Quaterniond& q,
+                 const std::string& indent) {
+    line(indent + attribute + ":");
+    line(indent + "    position: " + vec(p));
+    line(indent + "    rotation: Math.Quat.from_xyzw(" + num(q.x()) + ", " + num(q.y()) + ", " + num(q.z()) +
+         ", " + num(q.w()) + ")");
+  }
+  void connector(const std::string& name, const Eigen::Vector3d& position, const Eigen::Vector3d& axis,
+                 const Eigen::Vector3d& normal, const std::string& indent) {
+    line(indent + id(name) + " is Physics3D.Interactions.MateConnector:");
+    line(indent + "    position: " + vec(position));
+    line(indent + "    main_axis: " + vec(axis));
+    line(indent + "    normal: " + vec(normal));
+  }
+  std::string& text() { return out_; }
+  std::vector<uint32_t>& origins() { return origins_; }
+
+ private:
+  const UrdfDocument& doc_;
+  std::string out_;
+  std::vector<uint32_t> origins_;
+  uint32_t origin_ = 0;
+};
+
+// Where a mesh file is: relative names resolve against the URDF's folder; `package://P/rest` against the
+// folder named P at or above the URDF, or a folder P beside one of those (a Urdf.PackagePath in the model
+// overrides this later, see `package_uri`).
 std::string mesh_path(const std::string& filename, const fs::path& urdf_dir) {
   std::string name = filename;
   if (name.rfind("file://", 0) == 0) name = name.substr(7);
@@ -84,177 +112,320 @@ std::string mesh_path(const std::string& filename, const fs::path& urdf_dir) {
   return (p.is_absolute() ? p : urdf_dir / p).lexically_normal().generic_string();
 }
 
+struct Context {
+  const UrdfDocument& doc;
+  Writer& w;
+  fs::path urdf_dir;
+  std::vector<UrdfFinding>& findings;
+  std::map<std::string, std::string> materials;  // URDF material name -> generated model name
+};
+
+// The shape element (<box>, <mesh>, ...) of a link's nth <collision> or <visual>.
+const XMLElement* shape_element(const UrdfDocument& doc, const std::string& link, const char* kind,
+                                size_t nth) {
+  const XMLElement* e = UrdfDocument::child(doc.link(link), kind, static_cast<int>(nth));
+  const XMLElement* g = UrdfDocument::child(e, "geometry");
+  return g && g->FirstChildElement() ? g->FirstChildElement() : e;
+}
+
 // One geometry of a link: collision geometries are Physics3D ones, visual ones Visuals ones.
-std::string geometry(const std::string& name, const urdf::Geometry& g, const urdf::Pose& origin, bool visual,
-                     const fs::path& urdf_dir, std::string& error) {
+bool geometry(Context& c, const std::string& name, const urdf::Geometry& g, const urdf::Pose& origin,
+              bool visual, const std::string& material) {
   const std::string ns = visual ? "Visuals.Geometries." : "Physics3D.Geometries.";
+  const std::string in = "            ";
   Eigen::Quaterniond q = to_eigen(origin.rotation);
-  std::string body;
   switch (g.type) {
     case urdf::Geometry::BOX:
-      body = "            size: " + vec(to_eigen(static_cast<const urdf::Box&>(g).dim)) + "\n";
-      return "        " + id(name) + " is " + ns + "Box:\n" + body +
-             transform("local_transform", to_eigen(origin.position), q, "            ");
+      c.w.line("        " + id(name) + " is " + ns + "Box:");
+      c.w.line(in + "size: " + vec(to_eigen(static_cast<const urdf::Box&>(g).dim)));
+      break;
     case urdf::Geometry::SPHERE:
-      return "        " + id(name) + " is " + ns +
-             "Sphere:\n            radius: " + num(static_cast<const urdf::Sphere&>(g).radius) + "\n" +
-             transform("local_transform", to_eigen(origin.position), q, "            ");
+      c.w.line("        " + id(name) + " is " + ns + "Sphere:");
+      c.w.line(in + "radius: " + num(static_cast<const urdf::Sphere&>(g).radius));
+      break;
     case urdf::Geometry::CYLINDER: {
-      const auto& c = static_cast<const urdf::Cylinder&>(g);
+      const auto& cyl = static_cast<const urdf::Cylinder&>(g);
       // URDF cylinders lie along z, OpenPLX ones along y: turn y onto z.
       q = q * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
-      return "        " + id(name) + " is " + ns + "Cylinder:\n            radius: " + num(c.radius) +
-             "\n            height: " + num(c.length) + "\n" +
-             transform("local_transform", to_eigen(origin.position), q, "            ");
+      c.w.line("        " + id(name) + " is " + ns + "Cylinder:");
+      c.w.line(in + "radius: " + num(cyl.radius));
+      c.w.line(in + "height: " + num(cyl.length));
+      break;
     }
     case urdf::Geometry::MESH: {
       const auto& m = static_cast<const urdf::Mesh&>(g);
-      const std::string file = mesh_path(m.filename, urdf_dir);
-      if (file.find('"') != std::string::npos) {
-        error = "mesh path contains a quote: " + file;
-        return "";
+      const std::string file = mesh_path(m.filename, c.urdf_dir);
+      if (file.find('"') != std::string::npos || m.filename.find('"') != std::string::npos) {
+        c.findings.push_back({true, 0, "mesh path contains a quote: " + m.filename, {}});
+        return false;
       }
-      return "        " + id(name) + " is " + ns + "ExternalTriMeshGeometry:\n            path: @\"" + file +
-             "\"\n            scale: " + vec(to_eigen(m.scale)) + "\n" +
-             transform("local_transform", to_eigen(origin.position), q, "            ");
+      c.w.line("        " + id(name) + " is " + ns + "ExternalTriMeshGeometry:");
+      c.w.line(in + "path: @\"" + file + "\"");
+      c.w.line(in + "scale: " + vec(to_eigen(m.scale)));
+      if (m.filename.rfind("package://", 0) == 0)
+        c.w.line(in + "package_uri is String: \"" + m.filename + "\"");
+      break;
     }
   }
-  return "";
+  if (!material.empty()) c.w.line(in + "material becomes " + id(material));
+  c.w.transform("local_transform", to_eigen(origin.position), q, in);
+  return true;
+}
+
+// URDF materials with a colour become Visuals materials (models of the generated document), by name.
+void declare_materials(Context& c, const urdf::ModelInterface& robot, const std::string& model_name) {
+  std::vector<urdf::LinkSharedPtr> links;
+  robot.getLinks(links);
+  std::map<std::string, urdf::MaterialSharedPtr> used;  // name order: deterministic
+  for (const auto& link : links) {
+    for (const auto& v : link->visual_array) {
+      if (v->material)
+        used.emplace(v->material_name.empty() ? link->name + "/" : v->material_name, v->material);
+    }
+  }
+  for (const auto& [name, material] : used) {
+    const std::string model = model_name + ".material." + name;
+    c.materials[name] = model;
+    c.w.from(nullptr);
+    for (const XMLElement* e = c.doc.robot()->FirstChildElement("material"); e;
+         e = e->NextSiblingElement("material")) {
+      if (e->Attribute("name") && name == e->Attribute("name")) c.w.from(e);
+    }
+    const urdf::Color& rgba = material->color;
+    c.w.line(id(model) + " is Visuals.Materials.Material:");
+    c.w.line("    with Visuals.Materials.SurfaceFeatures.BaseColor");
+    c.w.line("    base_color_tint: {" + num(rgba.r) + ", " + num(rgba.g) + ", " + num(rgba.b) + ", " +
+             num(rgba.a) + "}");
+    if (!material->texture_filename.empty()) {
+      c.findings.push_back({false,
+                            c.doc.offset_of(c.doc.robot()),
+                            "material `" + name + "` has texture " + material->texture_filename +
+                                ", which is not mapped (MuJoCo 2.2.2 takes textures only as its own assets); "
+                                "the colour is kept",
+                            {}});
+    }
+  }
+}
+
+// The link's inertial, checked: a non-physical tensor is repaired, with a warning at <inertia>.
+void inertial(Context& c, const urdf::Link& link) {
+  const urdf::Inertial& i = *link.inertial;
+  Eigen::Matrix3d tensor;
+  tensor << i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz;
+  const XMLElement* at = UrdfDocument::child(c.doc.link(link.name), "inertial");
+  if (std::optional<InertiaRepair> repair = repair_inertia(i.mass, tensor)) {
+    const XMLElement* inertia = UrdfDocument::child(at, "inertia");
+    c.findings.push_back({false,
+                          c.doc.offset_of(inertia ? inertia : at),
+                          "link `" + link.name + "` has a non-physical inertia: " + repair->what,
+                          {}});
+    tensor = repair->tensor;
+  }
+  c.w.from(at);
+  c.w.line("        inertia.mass: " + num(i.mass));
+  c.w.line("        inertia.tensor: Physics3D.Bodies.Inertia.symmetric_tensor(" + vec(tensor.diagonal()) +
+           ", " + num(tensor(0, 1)) + ", " + num(tensor(0, 2)) + ", " + num(tensor(1, 2)) + ")");
+  c.w.transform("kinematics.local_cm_transform", to_eigen(i.origin.position), to_eigen(i.origin.rotation),
+                "        ");
+}
+
+// World poses of the links at the zero configuration (for links that no mate places: floating joints).
+std::map<std::string, Eigen::Isometry3d> zero_poses(const urdf::ModelInterface& robot) {
+  std::map<std::string, Eigen::Isometry3d> pose;
+  std::vector<urdf::LinkConstSharedPtr> stack{robot.getRoot()};
+  pose[robot.getRoot()->name] = Eigen::Isometry3d::Identity();
+  while (!stack.empty()) {
+    urdf::LinkConstSharedPtr link = stack.back();
+    stack.pop_back();
+    for (const auto& child : link->child_links) {
+      const urdf::Pose& o = child->parent_joint->parent_to_joint_origin_transform;
+      Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+      t.translate(to_eigen(o.position));
+      t.rotate(to_eigen(o.rotation));
+      pose[child->name] = pose[link->name] * t;
+      stack.push_back(child);
+    }
+  }
+  return pose;
+}
+
+std::string mate_of(const urdf::Joint& joint) {
+  switch (joint.type) {
+    case urdf::Joint::REVOLUTE:
+    case urdf::Joint::CONTINUOUS:
+      return "Hinge";
+    case urdf::Joint::PRISMATIC:
+      return "Prismatic";
+    case urdf::Joint::FIXED:
+      return "Lock";
+    default:
+      return "";
+  }
 }
 
 }  // namespace
 
-std::optional<std::string> urdf_to_openplx(const std::string& path, const std::string& model_name,
-                                           std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream xml;
-  xml << in.rdbuf();
-  if (!in) {
-    error = "cannot read " + path;
-    return std::nullopt;
+UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name) {
+  UrdfImport result;
+  UrdfDocument doc(urdf_text);
+  if (!doc.well_formed()) {
+    result.findings = std::move(doc.findings());
+    return result;
   }
-  urdf::ModelInterfaceSharedPtr robot = urdf::parseURDF(xml.str());
-  if (!robot) {
-    error = "urdfdom rejected " + path + " (see its messages above)";
-    return std::nullopt;
+  const std::string lenient = doc.lenient_text();
+  result.findings = std::move(doc.findings());
+  std::vector<std::string> errors, warnings;
+  urdf::ModelInterfaceSharedPtr robot;
+  {
+    UrdfdomCapture capture(errors, warnings);
+    robot = urdf::parseURDF(lenient);
   }
-  const fs::path urdf_dir = fs::path(path).parent_path();
-  std::string out = id(model_name) + " is Physics3D.System:\n";
-  out +=
-      "    world_anchor is Physics3D.Interactions.MateConnector:\n        main_axis: {0.0, 0.0, 1.0}\n"
-      "        normal: {1.0, 0.0, 0.0}\n";
+  for (const std::string& warning : warnings)
+    result.findings.push_back({false, doc.offset_of(doc.robot()), "urdfdom: " + warning, {}});
+  if (!robot || !robot->getRoot()) {
+    result.findings.push_back(doc.locate(errors));
+    return result;
+  }
+  result.robot_name = robot->getName();
+  Writer w(doc);
+  Context c{doc, w, fs::path(path).parent_path(), result.findings, {}};
+  std::vector<urdf::JointSharedPtr> joints;
+  for (const auto& [name, joint] : robot->joints_) joints.push_back(joint);  // std::map: name order
+  for (const auto& joint : joints) {
+    if (joint->type == urdf::Joint::PLANAR) {  // urdfdom itself rejects unknown types
+      result.findings.push_back(
+          {true,
+           doc.offset_of(doc.joint(joint->name)),
+           "joint `" + joint->name +
+               "` is planar, which neither MuJoCo 2.2.2 (no planar joint) nor OpenPLX (no "
+               "planar mate) has; replace it by two prismatic joints and a revolute one",
+           {}});
+      return result;
+    }
+  }
+  declare_materials(c, *robot, model_name);
+  w.from(nullptr);
+  w.line(id(model_name) + " is Physics3D.System:");
+  w.connector("world_anchor", Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+              "    ");
   // Links in name order (deterministic), each with the connectors of the joints it takes part in.
   std::vector<urdf::LinkSharedPtr> links;
   robot->getLinks(links);
   std::sort(links.begin(), links.end(), [](const auto& a, const auto& b) { return a->name < b->name; });
-  std::vector<urdf::JointSharedPtr> joints;
-  for (const auto& [name, joint] : robot->joints_) joints.push_back(joint);  // std::map: name order
-  const std::string root = robot->getRoot() ? robot->getRoot()->name : "";
+  const std::string root = robot->getRoot()->name;
   // A root link named `world` is the world itself (the ROS convention MuJoCo's compiler follows): its joints
   // start from connectors fixed in the system.
   const bool world_root = root == "world";
   // A massless root link stays where it is (MuJoCo keeps it massless, welded to the world): a static body.
   const auto root_link = robot->getRoot();
-  const bool massless_root =
-      !world_root && root_link && (!root_link->inertial || root_link->inertial->mass <= 0);
+  const bool massless_root = !world_root && (!root_link->inertial || root_link->inertial->mass <= 0);
+  const std::map<std::string, Eigen::Isometry3d> zero = zero_poses(*robot);
   if (world_root) {
     for (const auto& joint : joints) {
       if (joint->parent_link_name != "world") continue;
-      Eigen::Vector3d axis = to_eigen(joint->axis);
-      if (axis.squaredNorm() < 1e-24) axis = Eigen::Vector3d::UnitX();
-      axis.normalize();
+      w.from(doc.joint(joint->name));
+      const Eigen::Vector3d axis = joint_axis(*joint);
       const urdf::Pose& o = joint->parent_to_joint_origin_transform;
       const Eigen::Quaterniond r = to_eigen(o.rotation);
-      out +=
-          connector(joint->name + "_parent", to_eigen(o.position), r * axis, r * normal_to(axis)).substr(4);
+      w.connector(joint->name + "_parent", to_eigen(o.position), r * axis, r * normal_to(axis), "    ");
     }
   }
   for (const auto& link : links) {
     if (world_root && link->name == "world") continue;
-    out += "    " + id(link->name) + " is Physics3D.Bodies.RigidBody:\n";
-    if (massless_root && link->name == root) out += "        is_dynamic: false\n";
-    if (link->inertial) {
-      const urdf::Inertial& i = *link->inertial;
-      out += "        inertia.mass: " + num(i.mass) + "\n";
-      out += "        inertia.tensor: Physics3D.Bodies.Inertia.symmetric_tensor(" +
-             vec({i.ixx, i.iyy, i.izz}) + ", " + num(i.ixy) + ", " + num(i.ixz) + ", " + num(i.iyz) + ")\n";
-      out += transform("kinematics.local_cm_transform", to_eigen(i.origin.position),
-                       to_eigen(i.origin.rotation), "        ");
+    w.from(doc.link(link->name));
+    w.line("    " + id(link->name) + " is Physics3D.Bodies.RigidBody:");
+    if (massless_root && link->name == root) w.line("        is_dynamic: false");
+    if (link->parent_joint && link->parent_joint->type == urdf::Joint::FLOATING) {
+      // No mate places a floating joint's child: it starts where the joint's origin puts it.
+      w.from(doc.joint(link->parent_joint->name));
+      const Eigen::Isometry3d& t = zero.at(link->name);
+      w.transform("kinematics.local_transform", t.translation(), Eigen::Quaterniond(t.rotation()),
+                  "        ");
     }
+    if (link->inertial) inertial(c, *link);
     for (size_t k = 0; k < link->collision_array.size(); ++k) {
-      const auto& c = link->collision_array[k];
-      if (!c->geometry) continue;
-      out += geometry("collision_" + std::to_string(k), *c->geometry, c->origin, false, urdf_dir, error);
+      const auto& col = link->collision_array[k];
+      if (!col->geometry) continue;
+      w.from(shape_element(doc, link->name, "collision", k));
+      if (!geometry(c, "collision_" + std::to_string(k), *col->geometry, col->origin, false, ""))
+        return result;
     }
     for (size_t k = 0; k < link->visual_array.size(); ++k) {
       const auto& v = link->visual_array[k];
       if (!v->geometry) continue;
-      out += geometry("visual_" + std::to_string(k), *v->geometry, v->origin, true, urdf_dir, error);
+      w.from(shape_element(doc, link->name, "visual", k));
+      const std::string material =
+          v->material ? c.materials[v->material_name.empty() ? link->name + "/" : v->material_name] : "";
+      if (!geometry(c, "visual_" + std::to_string(k), *v->geometry, v->origin, true, material)) return result;
     }
-    if (!error.empty()) return std::nullopt;
+    w.from(doc.link(link->name));
     if (link->name == root)
-      out += connector("root_anchor", Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
-                       Eigen::Vector3d::UnitX());
+      w.connector("root_anchor", Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                  "        ");
     for (const auto& joint : joints) {
-      Eigen::Vector3d axis = to_eigen(joint->axis);
-      if (axis.squaredNorm() < 1e-24) axis = Eigen::Vector3d::UnitX();
-      axis.normalize();
-      const Eigen::Vector3d normal = normal_to(axis);
+      if (joint->type == urdf::Joint::FLOATING) continue;
+      const Eigen::Vector3d axis = joint_axis(*joint), normal = normal_to(axis);
+      w.from(doc.joint(joint->name));
       if (joint->parent_link_name == link->name) {
         const urdf::Pose& o = joint->parent_to_joint_origin_transform;
         const Eigen::Quaterniond r = to_eigen(o.rotation);
-        out += connector(joint->name + "_parent", to_eigen(o.position), r * axis, r * normal);
+        w.connector(joint->name + "_parent", to_eigen(o.position), r * axis, r * normal, "        ");
       }
       if (joint->child_link_name == link->name)
-        out += connector(joint->name + "_child", Eigen::Vector3d::Zero(), axis, normal);
+        w.connector(joint->name + "_child", Eigen::Vector3d::Zero(), axis, normal, "        ");
     }
   }
-  if (!root.empty() && !world_root && !massless_root) {
-    out += "    root_lock is Physics3D.Interactions.Lock:\n        connectors: [world_anchor, " + id(root) +
-           "." + id("root_anchor") + "]\n";
+  if (!world_root && !massless_root) {
+    w.from(doc.link(root));
+    w.line("    root_lock is Physics3D.Interactions.Lock:");
+    w.line("        connectors: [world_anchor, " + id(root) + "." + id("root_anchor") + "]");
   }
   for (const auto& joint : joints) {
-    std::string mate;
-    switch (joint->type) {
-      case urdf::Joint::REVOLUTE:
-      case urdf::Joint::CONTINUOUS:
-        mate = "Hinge";
-        break;
-      case urdf::Joint::PRISMATIC:
-        mate = "Prismatic";
-        break;
-      case urdf::Joint::FIXED:
-        mate = "Lock";
-        break;
-      case urdf::Joint::FLOATING:
-        continue;  // a free body
-      default:
-        error = "joint `" + joint->name + "` has a type MuJoCo cannot take (planar or unknown)";
-        return std::nullopt;
-    }
+    const std::string mate = mate_of(*joint);
+    if (mate.empty()) continue;  // floating: a free body
+    const XMLElement* element = doc.joint(joint->name);
+    w.from(element);
     const std::string parent =
         world_root && joint->parent_link_name == "world" ? "" : id(joint->parent_link_name) + ".";
     const std::string connectors = "[" + parent + id(joint->name + "_parent") + ", " +
                                    id(joint->child_link_name) + "." + id(joint->name + "_child") + "]";
-    out += "    " + id(joint->name) + " is Physics3D.Interactions." + mate +
-           ":\n        connectors: " + connectors + "\n";
-    const bool limited = (joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC) &&
-                         joint->limits && joint->limits->lower < joint->limits->upper;
-    if (limited) {
-      out += "    " + id(joint->name + "_limits") + " is Physics3D.Interactions." +
-             (mate == "Hinge" ? "RotationalRange" : "LinearRange") + ":\n        connectors: " + connectors +
-             "\n        start: " + num(joint->limits->lower) + "\n        end: " + num(joint->limits->upper) +
-             "\n";
+    w.line("    " + id(joint->name) + " is Physics3D.Interactions." + mate + ":");
+    w.line("        connectors: " + connectors);
+    const auto& limits = joint->limits;
+    if ((joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC) && limits &&
+        limits->lower < limits->upper) {
+      w.from(UrdfDocument::child(element, "limit"));
+      w.line("    " + id(joint->name + "_limits") + " is Physics3D.Interactions." +
+             (mate == "Hinge" ? "RotationalRange" : "LinearRange") + ":");
+      w.line("        connectors: " + connectors);
+      w.line("        start: " + num(limits->lower));
+      w.line("        end: " + num(limits->upper));
+    }
+    const double damping = joint->dynamics ? joint->dynamics->damping : 0,
+                 friction = joint->dynamics ? joint->dynamics->friction : 0,
+                 effort = limits ? limits->effort : 0, velocity = limits ? limits->velocity : 0;
+    if (mate != "Lock" && (damping > 0 || friction > 0 || effort > 0 || velocity > 0)) {
+      w.from(UrdfDocument::child(element, joint->dynamics ? "dynamics" : "limit"));
+      w.line("    " + id(joint->name + "_properties") + " is Urdf.JointProperties:");
+      w.line("        mate: " + id(joint->name));
+      if (damping > 0) w.line("        damping: " + num(damping));
+      if (friction > 0) w.line("        friction: " + num(friction));
+      if (effort > 0) w.line("        effort: " + num(effort));
+      if (velocity > 0) w.line("        velocity: " + num(velocity));
     }
   }
   for (const auto& joint : joints) {
     if (!joint->mimic || robot->joints_.count(joint->mimic->joint_name) == 0) continue;
-    out += "    " + id(joint->name + "_mimic") + " is Urdf.Mimic:\n        follower: " + id(joint->name) +
-           "\n        leader: " + id(joint->mimic->joint_name) +
-           "\n        multiplier: " + num(joint->mimic->multiplier) +
-           "\n        offset: " + num(joint->mimic->offset) + "\n";
+    w.from(UrdfDocument::child(doc.joint(joint->name), "mimic"));
+    w.line("    " + id(joint->name + "_mimic") + " is Urdf.Mimic:");
+    w.line("        follower: " + id(joint->name));
+    w.line("        leader: " + id(joint->mimic->joint_name));
+    w.line("        multiplier: " + num(joint->mimic->multiplier));
+    w.line("        offset: " + num(joint->mimic->offset));
   }
-  return out;
+  result.text = std::move(w.text());
+  result.line_origins = std::move(w.origins());
+  return result;
 }
 
 }  // namespace openplx::frontend

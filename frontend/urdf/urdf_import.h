@@ -2,19 +2,33 @@
 // any imported document, so an imported robot can be extended in OpenPLX (motors, outputs, overrides).
 //
 // The generated model derives from Physics3D.System: one RigidBody per link (mass, inertia tensor at the
-// inertial frame, collision geometries, visual geometries), and per joint a MateConnector in the parent at
-// the joint origin and one in the child at its frame (both with main_axis = the joint axis), joined by a
-// Hinge (revolute, continuous), Prismatic or Lock (fixed); limits become ranges. The root link is locked to
-// the world, as MuJoCo's own URDF compiler fixes it.
+// inertial frame, collision geometries, visual geometries with their colours), and per joint a MateConnector
+// in the parent at the joint origin and one in the child at its frame (both with main_axis = the joint
+// axis), joined by a Hinge (revolute, continuous), Prismatic or Lock (fixed); limits become ranges, mimic a
+// Urdf.Mimic, <dynamics> and effort/velocity limits a Urdf.JointProperties. The root link is locked to the
+// world, as MuJoCo's own URDF compiler fixes it.
+//
+// Every generated line remembers the URDF element it came from, so diagnostics about the robot (here, in
+// SNAP or in the emitter) point at the URDF's own file and line.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "frontend/urdf/urdf_document.h"
 
 namespace openplx::frontend {
 
-// OpenPLX text declaring model `model_name` for the URDF at `path`, or nullopt with `error`.
-std::optional<std::string> urdf_to_openplx(const std::string& path, const std::string& model_name,
-                                           std::string& error);
+struct UrdfImport {
+  std::optional<std::string> text;     // OpenPLX declaring the model; nullopt when the URDF is rejected
+  std::vector<uint32_t> line_origins;  // per generated line: a byte offset into the URDF text
+  std::vector<UrdfFinding> findings;   // errors and warnings, located in the URDF text
+  std::string robot_name;              // <robot name="...">
+};
+
+// Imports the URDF at `path` whose text is `urdf_text` as model `model_name`.
+UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name);
 
 }  // namespace openplx::frontend

@@ -1,0 +1,80 @@
+// The URDF as XML with positions: tinyxml2 reads it first so that every error (malformed XML, or one urdfdom
+// reports without a position) and every generated OpenPLX line points at the URDF line it came from.
+#pragma once
+
+#include <tinyxml2.h>
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace openplx::frontend {
+
+// A located finding about the URDF: `offset` is a byte offset into its text.
+struct UrdfFinding {
+  bool error = true;
+  uint32_t offset = 0;
+  std::string message;
+  std::vector<std::string> notes;
+};
+
+class UrdfDocument {
+ public:
+  // Parses `text`; a malformed document gives one located error in `findings()`.
+  explicit UrdfDocument(std::string text);
+
+  bool well_formed() const { return well_formed_; }
+  const std::string& text() const { return text_; }
+  std::vector<UrdfFinding>& findings() { return findings_; }
+
+  // Byte offset of element `e`'s opening `<` (the start of its line when it cannot be found).
+  uint32_t offset_of(const tinyxml2::XMLElement* e) const;
+  uint32_t offset_of_line(int line) const;
+  // The `<link>` or `<joint>` element of that name (the `nth` of that name, 0-based), or null.
+  const tinyxml2::XMLElement* link(const std::string& name, int nth = 0) const;
+  const tinyxml2::XMLElement* joint(const std::string& name, int nth = 0) const;
+  const tinyxml2::XMLElement* robot() const { return robot_; }
+  // The `nth` child of `parent` named `tag`, or null.
+  static const tinyxml2::XMLElement* child(const tinyxml2::XMLElement* parent, const char* tag, int nth = 0);
+
+  // The text urdfdom should read: the URDF itself, or, when a joint's <limit> lacks the effort or velocity
+  // URDF requires (MuJoCo's compiler accepts that), a copy with them set to 0 (no limit) and a warning.
+  std::string lenient_text();
+
+  // Turns urdfdom's messages (which carry no position) into one located error: at the first element a
+  // message names, or at the joint that closes a loop, or else at `<robot>`; the other messages are notes.
+  UrdfFinding locate(const std::vector<std::string>& urdfdom_messages) const;
+
+ private:
+  const tinyxml2::XMLElement* named(const std::multimap<std::string, const tinyxml2::XMLElement*>& index,
+                                    const std::string& name, int nth) const;
+  std::optional<UrdfFinding> loop_finding() const;
+  const tinyxml2::XMLElement* element_with_attribute_text(const std::string& needle) const;
+
+  std::string text_;
+  tinyxml2::XMLDocument doc_;
+  bool well_formed_ = false;
+  const tinyxml2::XMLElement* robot_ = nullptr;
+  std::vector<uint32_t> line_starts_;
+  std::multimap<std::string, const tinyxml2::XMLElement*> links_, joints_;
+  std::vector<UrdfFinding> findings_;
+};
+
+// While alive, urdfdom's console messages are collected into `errors` and `warnings` instead of
+// printed: they become located diagnostics. console_bridge's handler is process-wide, so a mutex
+// serialises concurrent imports.
+class UrdfdomCapture {
+ public:
+  UrdfdomCapture(std::vector<std::string>& errors, std::vector<std::string>& warnings);
+  ~UrdfdomCapture();
+  UrdfdomCapture(const UrdfdomCapture&) = delete;
+  UrdfdomCapture& operator=(const UrdfdomCapture&) = delete;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace openplx::frontend
