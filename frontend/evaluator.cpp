@@ -243,7 +243,7 @@ Type Evaluator::merged_becomes_type(const std::vector<Binding>& all) {
 
 bool Evaluator::is_renamed_to(const Object& object, std::string_view written, std::string_view slot) {
   std::optional<std::string_view> current = renamed_attribute(written);
-  return current && *current == slot && !object.index.count(written);
+  return current && *current == slot && !object.has(written);
 }
 
 const Entry* Evaluator::entry_below(ObjectId id, std::string_view slot) const {
@@ -271,8 +271,43 @@ ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name
   return id;
 }
 
+bool Evaluator::targeted_from_outside(const std::vector<Level>& levels) const {
+  for (size_t i = 0; i + 1 < levels.size(); ++i) {
+    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
+      if (model->by_parent.count(levels[i].rel) || model->children_below.count(levels[i].rel) ||
+          model->annotations_below.count(levels[i].rel))
+        return true;
+    }
+  }
+  return false;
+}
+
 void Evaluator::build_slots(ObjectId id) {
   const std::vector<Level> levels = levels_of(id);
+  // An instance that no enclosing model's entries reach is laid out by its type alone: the first such
+  // instance of a type is built in full, the others copy it (most objects are bundle internals: vectors,
+  // transforms, signals).
+  if (targeted_from_outside(levels)) {
+    build_slots_from(id, levels);
+    return;
+  }
+  Object& obj = graph_.at(id);
+  auto [layout, fresh] = layouts_.try_emplace(obj.type);
+  if (!fresh) {
+    obj.slots = layout->second.slots;
+    for (Slot& slot : obj.slots) {  // every binding is the instance's own
+      if (slot.binding.entry) slot.binding.self = id;
+      if (slot.becomes.entry) slot.becomes.self = id;
+    }
+    obj.index = layout->second.index;
+    return;
+  }
+  build_slots_from(id, levels);
+  const Object& built = graph_.at(id);
+  layouts_[built.type] = {built.slots, built.index};
+}
+
+void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) {
   const uint32_t own_level = static_cast<uint32_t>(levels.size() - 1);
   const Targeting targeting = collect_targeting(levels);
   const std::vector<Binding>& ordered = targeting.ordered;
@@ -288,9 +323,11 @@ void Evaluator::build_slots(ObjectId id) {
     graph_.at(id).type = program_.make_trait_extension(graph_.at(id).type, std::move(extra_traits));
   }
   Object& obj = graph_.at(id);
+  auto index = std::make_shared<SlotIndex>();
+  obj.index = index;
   auto add_slot = [&](const Entry& e, ModelInfo* model) {
     const std::string_view name = e.path.back();
-    if (obj.index.count(name)) {
+    if (index->count(name)) {
       sink_.report(DiagCode::DuplicateAttribute, e.member->path.range,
                    "Duplicate attribute name " + std::string(name) + " in " + obj.type->qualified);
       return;
@@ -300,7 +337,7 @@ void Evaluator::build_slots(ObjectId id) {
     slot.declaration = &e;
     slot.declared_in = model;
     slot.optional = e.member->is_optional;
-    obj.index.emplace(name, static_cast<uint32_t>(obj.slots.size()));
+    index->emplace(name, static_cast<uint32_t>(obj.slots.size()));
     obj.slots.push_back(std::move(slot));
   };
   // Declaration order: the root-most base first, then traits, then the model itself...
@@ -321,9 +358,9 @@ void Evaluator::build_slots(ObjectId id) {
   for (const Binding& b : ordered) {
     const Entry& e = *b.entry;
     if (e.kind == Entry::Kind::Annotation || e.kind == Entry::Kind::WithTrait) continue;
-    if (obj.index.count(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
+    if (obj.has(e.path.back()) || !reported_unknown_.insert(&e).second) continue;
     if (std::optional<std::string_view> current = renamed_attribute(e.path.back());
-        current && obj.index.count(*current)) {
+        current && obj.has(*current)) {
       sink_.report(
           DiagCode::DeprecatedName, e.member->path.range,
           "`" + std::string(e.path.back()) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
@@ -386,8 +423,8 @@ void Evaluator::build_slots(ObjectId id) {
   // Annotations: the entry nearest the root (then the most derived) wins, so apply in reverse.
   for (auto it = targeting.annotations.rbegin(); it != targeting.annotations.rend(); ++it) {
     const Entry& e = *it->first;
-    auto slot = obj.index.find(e.path[e.path.size() - 2]);
-    if (slot != obj.index.end()) {
+    auto slot = obj.index->find(e.path[e.path.size() - 2]);
+    if (slot != obj.index->end()) {
       obj.slots[slot->second].annotations[std::string(e.path.back())] = {*e.value, &it->second->doc->doc};
     }
   }
@@ -418,8 +455,8 @@ ObjectId Evaluator::make_free_object(ModelInfo* model) {
 
 void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
   Object& obj = graph_.at(object);
-  auto it = obj.index.find(name);
-  if (it == obj.index.end()) return;
+  auto it = obj.index->find(name);
+  if (it == obj.index->end()) return;
   Slot& slot = obj.slots[it->second];
   slot.value = std::move(value);
   slot.state = Slot::State::Done;
@@ -496,8 +533,9 @@ const Value& Evaluator::value(ObjectId object, uint32_t slot) {
 }
 
 const Value* Evaluator::value(ObjectId object, std::string_view slot) {
-  auto it = graph_.at(object).index.find(slot);
-  return it == graph_.at(object).index.end() ? nullptr : &value(object, it->second);
+  const SlotIndex& index = *graph_.at(object).index;
+  auto it = index.find(slot);
+  return it == index.end() ? nullptr : &value(object, it->second);
 }
 
 void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
@@ -745,8 +783,9 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
   Entity entity;
   if (e.kind == ExprKind::Name) {
     if (scope.self != kNoObject) {
-      auto it = graph_.at(scope.self).index.find(e.text);
-      if (it != graph_.at(scope.self).index.end()) {
+      const SlotIndex& index = *graph_.at(scope.self).index;
+      auto it = index.find(e.text);
+      if (it != index.end()) {
         entity.value = value(scope.self, it->second);
         if (entity.value.kind == Value::Kind::Unset) {
           sink_.report(DiagCode::UnsetAttribute, e.range,
@@ -842,14 +881,14 @@ Value Evaluator::member_of(const Value& object, std::string_view name, SourceRan
     return Value::error();
   }
   const Object& obj = graph_.at(object.object);
-  auto it = obj.index.find(name);
+  auto it = obj.index->find(name);
   if (std::optional<std::string_view> current = renamed_attribute(name);
-      it == obj.index.end() && current && obj.index.count(*current)) {
+      it == obj.index->end() && current && obj.has(*current)) {
     sink_.report(DiagCode::DeprecatedName, where,
                  "`" + std::string(name) + "` is the 0.17.8 name; use `" + std::string(*current) + "`");
-    it = obj.index.find(*current);
+    it = obj.index->find(*current);
   }
-  if (it == obj.index.end()) {
+  if (it == obj.index->end()) {
     std::vector<std::string> names;
     for (const Slot& s : obj.slots) names.emplace_back(s.name);
     std::string message = "Unknown attribute " + std::string(name) + " in " + obj.type->qualified;

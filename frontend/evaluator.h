@@ -108,6 +108,9 @@ class Evaluator {
 
   ObjectId new_object(ModelInfo* type, ObjectId owner, std::string name);
   void build_slots(ObjectId id);
+  void build_slots_from(ObjectId id, const std::vector<Level>& levels);
+  // Whether an enclosing model's entries reach the instance (assign, add or annotate its attributes).
+  bool targeted_from_outside(const std::vector<Level>& levels) const;
   std::vector<Level> levels_of(ObjectId id) const;
   // The entries aimed at one instance's attributes (see collect_targeting).
   struct Targeting {
@@ -163,6 +166,12 @@ class Evaluator {
       declared_types_;  // a declaration's type resolves the same everywhere  // one message per wrong entry,
                         // however many instances
   int eval_depth_ = 0;
+  // The slot layout of instances laid out by their type alone (see build_slots).
+  struct Layout {
+    std::vector<Slot> slots;
+    std::shared_ptr<const SlotIndex> index;
+  };
+  std::unordered_map<const ModelInfo*, Layout> layouts_;
 };
 
 // The root model of a loaded file: `name` if given, else the last model declared. Reports

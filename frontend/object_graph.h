@@ -8,6 +8,7 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -48,6 +49,9 @@ struct Slot {
   std::map<std::string, AnnotationValue, std::less<>> annotations;
 };
 
+// Attribute name -> slot index. Instances whose layout comes from their type alone share one.
+using SlotIndex = std::unordered_map<std::string_view, uint32_t>;
+
 struct Object {
   ModelInfo* type = nullptr;
   ObjectId owner = kNoObject;
@@ -56,12 +60,13 @@ struct Object {
   const Entry* created_by = nullptr;  // the declaration of the owning attribute, for owned defaults
   bool is_const_singleton = false;
   std::vector<Slot> slots;
-  std::unordered_map<std::string_view, uint32_t> index;
+  std::shared_ptr<const SlotIndex> index;
 
   const Slot* find(std::string_view slot) const {
-    auto it = index.find(slot);
-    return it == index.end() ? nullptr : &slots[it->second];
+    auto it = index->find(slot);
+    return it == index->end() ? nullptr : &slots[it->second];
   }
+  bool has(std::string_view slot) const { return index->count(slot) != 0; }
 };
 
 struct ObjectGraph {

@@ -448,6 +448,32 @@ ModelInfo* Program::builtin_model(std::string_view qualified) {
   return s.model;
 }
 
+ModelInfo* Program::loaded_model(std::string_view qualified) const {
+  const Namespace* ns = nullptr;
+  size_t start = 0;
+  while (start <= qualified.size()) {
+    size_t end = qualified.find('.', start);
+    if (end == std::string_view::npos) end = qualified.size();
+    const std::string_view part = qualified.substr(start, end - start);
+    if (!ns) {
+      auto root = bundle_roots_.find(part);
+      if (root == bundle_roots_.end()) return nullptr;
+      ns = root->second;
+    } else {
+      if (!ns->loaded) return nullptr;
+      if (end == qualified.size()) {
+        auto it = ns->symbols.find(part);
+        return it == ns->symbols.end() ? nullptr : it->second.model;
+      }
+      auto child = ns->children.find(part);
+      if (child == ns->children.end()) return nullptr;
+      ns = child->second;
+    }
+    start = end + 1;
+  }
+  return nullptr;
+}
+
 ModelInfo* Program::make_trait_extension(ModelInfo* base, std::vector<ModelInfo*> traits) {
   std::string name = base->qualified + " with ";
   for (size_t i = 0; i < traits.size(); ++i) name += (i ? ", " : "") + traits[i]->qualified;

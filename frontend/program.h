@@ -144,6 +144,9 @@ class Program {
 
   const std::vector<OperatorInfo>& operators() const { return operators_; }
   ModelInfo* builtin_model(std::string_view qualified);  // e.g. "Math.Vec3"; loads its namespace
+  // The model if its bundle namespace is already loaded, without loading anything: a model nothing loaded
+  // cannot be the base of anything evaluated (cheap role checks on models a document may not use).
+  ModelInfo* loaded_model(std::string_view qualified) const;
   ModelInfo* make_trait_extension(ModelInfo* base, std::vector<ModelInfo*> traits);
 
   SourceManager& sources() { return sources_; }

@@ -13,27 +13,30 @@ class ViewBuilder {
  public:
   ViewBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink) : ev_(evaluator), sink_(sink) {
     fe::Program& program = evaluator.program();
+    // Roles are checked against models the evaluation loaded; a bundle it never loaded cannot be a base of
+    // anything, and loading it here would only cost time (Terrain, Vehicles, DriveTrain for a simple arm).
+    // Physics3D's core is always looked up (loaded if need be).
     system_ = program.builtin_model("Physics3D.System");
     body_ = program.builtin_model("Physics3D.Bodies.Body");
     connector_ = program.builtin_model("Physics3D.Interactions.MateConnector");
-    adaptive_ = program.builtin_model("Physics3D.Interactions.AdaptiveMateConnector");
+    adaptive_ = program.loaded_model("Physics3D.Interactions.AdaptiveMateConnector");
     mate_ = program.builtin_model("Physics3D.Interactions.Mate");
     rigid_body_ = program.builtin_model("Physics3D.Bodies.RigidBody");
-    contact_geometry_ = program.builtin_model("Physics3D.Geometries.ContactGeometry");
-    visual_geometry_ = program.builtin_model("Visuals.Geometries.Geometry");
-    interaction1d_ = program.builtin_model("Physics.Interactions.Interaction1DOF");
-    input_ = program.builtin_model("Physics.Signals.Input");
-    output_ = program.builtin_model("Physics.Signals.Output");
-    contact_model_ = program.builtin_model("Physics.Interactions.SurfaceContact.Model");
-    visual_material_ = program.builtin_model("Visuals.Materials.Material");
-    shaft_ = program.builtin_model("Physics1D.Bodies.RotationalBody");
-    gear_ = program.builtin_model("DriveTrain.Gear");
-    differential_ = program.builtin_model("DriveTrain.Differential");
-    drive_actuator_ = program.builtin_model("DriveTrain.Actuator");
-    motor1d_ = program.builtin_model("Physics1D.Interactions.RotationalVelocityMotor");
-    mimic_ = program.builtin_model("Urdf.Mimic");
-    joint_properties_ = program.builtin_model("Urdf.JointProperties");
-    package_path_ = program.builtin_model("Urdf.PackagePath");
+    contact_geometry_ = program.loaded_model("Physics3D.Geometries.ContactGeometry");
+    visual_geometry_ = program.loaded_model("Visuals.Geometries.Geometry");
+    interaction1d_ = program.loaded_model("Physics.Interactions.Interaction1DOF");
+    input_ = program.loaded_model("Physics.Signals.Input");
+    output_ = program.loaded_model("Physics.Signals.Output");
+    contact_model_ = program.loaded_model("Physics.Interactions.SurfaceContact.Model");
+    visual_material_ = program.loaded_model("Visuals.Materials.Material");
+    shaft_ = program.loaded_model("Physics1D.Bodies.RotationalBody");
+    gear_ = program.loaded_model("DriveTrain.Gear");
+    differential_ = program.loaded_model("DriveTrain.Differential");
+    drive_actuator_ = program.loaded_model("DriveTrain.Actuator");
+    motor1d_ = program.loaded_model("Physics1D.Interactions.RotationalVelocityMotor");
+    mimic_ = program.loaded_model("Urdf.Mimic");
+    joint_properties_ = program.loaded_model("Urdf.JointProperties");
+    package_path_ = program.loaded_model("Urdf.PackagePath");
     // Drivetrain parts beyond shafts, gears, differentials, hinge/prismatic actuators and rotational velocity
     // motors are not mapped: each gets its warning instead of vanishing, as do collision-group filters.
     for (const char* name :
@@ -43,7 +46,7 @@ class ViewBuilder {
           "DriveTrain.ManualClutch", "DriveTrain.ManualBrake", "DriveTrain.EmpiricalTorqueConverter",
           "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.TorqueMotor", "DriveTrain.PowerSource",
           "Simulation.DisableCollisionPair"}) {
-      if (fe::ModelInfo* m = program.builtin_model(name)) unsupported_.push_back(m);
+      if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
         {"Box", Geometry::Shape::Box},           {"Sphere", Geometry::Shape::Sphere},
@@ -52,7 +55,7 @@ class ViewBuilder {
         {"TriMesh", Geometry::Shape::TriMesh},   {"ExternalTriMeshGeometry", Geometry::Shape::ExternalMesh}};
     for (const char* bundle : {"Physics3D.Geometries.", "Visuals.Geometries."}) {
       for (const auto& [name, shape] : shapes) {
-        if (fe::ModelInfo* m = program.builtin_model(std::string(bundle) + name))
+        if (fe::ModelInfo* m = program.loaded_model(std::string(bundle) + name))
           shapes_.emplace_back(m, shape);
       }
     }
@@ -66,7 +69,7 @@ class ViewBuilder {
                                                  {"ForceMotor", K::ForceMotor},
                                                  {"TorqueMotor", K::TorqueMotor}};
     for (const auto& [name, kind] : kinds1d) {
-      if (fe::ModelInfo* m = program.builtin_model(std::string("Physics3D.Interactions.") + name)) {
+      if (fe::ModelInfo* m = program.loaded_model(std::string("Physics3D.Interactions.") + name)) {
         kinds1d_.emplace_back(m, kind);
       }
     }
@@ -78,7 +81,7 @@ class ViewBuilder {
                                                       {"Distance", MateType::Distance},
                                                       {"ConstantVelocity", MateType::ConstantVelocity}};
     for (const auto& [name, type] : kinds) {
-      if (fe::ModelInfo* m = program.builtin_model(std::string("Physics3D.Interactions.") + name)) {
+      if (fe::ModelInfo* m = program.loaded_model(std::string("Physics3D.Interactions.") + name)) {
         mate_kinds_.emplace_back(m, type);
       }
     }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -16,12 +17,12 @@ namespace {
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
 
+// The shortest text that reads back as exactly `v`, as an OpenPLX Real literal.
 std::string num(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  std::string s = out.str();
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // a Real literal
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  std::string s(buffer, error == std::errc() ? end : buffer);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // a Real literal, not an Int
   return s;
 }
 
