@@ -2,6 +2,7 @@
 // 100, 1,000 and 10,000 bodies, next to MuJoCo's mj_loadXML of the very file it wrote, in the same run.
 // Target: ours <= 0.5x MuJoCo's compile at 1,000 bodies.
 #include <benchmark/benchmark.h>
+#include <malloc.h>
 #include <mujoco/mujoco.h>
 
 #include <filesystem>
@@ -74,4 +75,11 @@ BENCHMARK(BM_Openplx2Mjcf)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTim
 BENCHMARK(BM_MujocoLoadXml)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_Openplx2Mjcf)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_MujocoLoadXml)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // The same allocator settings as the openplx2mjcf executable (tools/cli/main.cpp).
+  mallopt(M_ARENA_MAX, 1);
+  mallopt(M_TOP_PAD, 16 << 20);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  return 0;
+}

@@ -271,40 +271,68 @@ ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name
   return id;
 }
 
-bool Evaluator::targeted_from_outside(const std::vector<Level>& levels) const {
-  for (size_t i = 0; i + 1 < levels.size(); ++i) {
-    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
-      if (model->by_parent.count(levels[i].rel) || model->children_below.count(levels[i].rel) ||
-          model->annotations_below.count(levels[i].rel))
-        return true;
-    }
+uint32_t Evaluator::reach(const ModelInfo* type) {
+  auto [it, fresh] = reach_.try_emplace(type, 0);
+  if (!fresh) return it->second;
+  // A key "a.b" of these maps targets the instance two levels below the model's own.
+  auto depth = [](const std::string& rel) {
+    return rel.empty() ? 0u : 1u + static_cast<uint32_t>(std::count(rel.begin(), rel.end(), '.'));
+  };
+  uint32_t deepest = 0;
+  for (const ModelInfo* model : type->linearization) {
+    for (const auto& [rel, unused] : model->by_parent) deepest = std::max(deepest, depth(rel));
+    for (const auto& [rel, unused] : model->children_below) deepest = std::max(deepest, depth(rel));
+    for (const auto& [rel, unused] : model->annotations_below) deepest = std::max(deepest, depth(rel));
   }
-  return false;
+  return it->second = deepest;
 }
 
 void Evaluator::build_slots(ObjectId id) {
-  const std::vector<Level> levels = levels_of(id);
-  // An instance that no enclosing model's entries reach is laid out by its type alone: the first such
-  // instance of a type is built in full, the others copy it (most objects are bundle internals: vectors,
-  // transforms, signals).
-  if (targeted_from_outside(levels)) {
-    build_slots_from(id, levels);
-    return;
-  }
-  Object& obj = graph_.at(id);
-  auto [layout, fresh] = layouts_.try_emplace(obj.type);
-  if (!fresh) {
-    obj.slots = layout->second.slots;
-    for (Slot& slot : obj.slots) {  // every binding is the instance's own
-      if (slot.binding.entry) slot.binding.self = id;
-      if (slot.becomes.entry) slot.becomes.self = id;
+  std::vector<ObjectId> chain;  // root first
+  for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
+  std::reverse(chain.begin(), chain.end());
+  const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
+  // An instance's layout (its slots, their types and the entries that bind them) is decided by its type and
+  // by the enclosing models whose entries reach it, each at its distance and relative path. Instances
+  // that agree on all of that (the inertia of every Link, the outputs of every body) share one layout:
+  // the first is built in full, the others copy it and rebind `this` to their own ancestors.
+  std::string key(reinterpret_cast<const char*>(&graph_.at(id).type), sizeof(ModelInfo*));
+  for (uint32_t i = 0; i < own_level; ++i) {
+    const ModelInfo* type = graph_.at(chain[i]).type;
+    const uint32_t distance = own_level - i;
+    if (distance > reach(type)) continue;  // its entries stop short of this instance
+    std::string rel;
+    for (uint32_t k = i + 1; k <= own_level; ++k) (rel += rel.empty() ? "" : ".") += graph_.at(chain[k]).name;
+    for (ModelInfo* model : type->linearization) {
+      if (model->by_parent.count(rel) || model->children_below.count(rel) ||
+          model->annotations_below.count(rel)) {
+        key.append(reinterpret_cast<const char*>(&type), sizeof(type));
+        key.append(reinterpret_cast<const char*>(&distance), sizeof(distance));
+        key += rel;
+        key += '\0';
+        break;
+      }
     }
-    obj.index = layout->second.index;
+  }
+  auto [layout, fresh] = layouts_.try_emplace(std::move(key));
+  if (!fresh) {
+    const Layout& l = layout->second;
+    Object& obj = graph_.at(id);
+    obj.type = l.type;
+    obj.slots = l.slots;
+    for (Slot& slot : obj.slots) {
+      for (Binding* b : {&slot.binding, &slot.becomes}) {
+        if (!b->entry) continue;
+        b->level = own_level - (l.own_level - b->level);
+        b->self = chain[b->level];
+      }
+    }
+    obj.index = l.index;
     return;
   }
-  build_slots_from(id, levels);
+  build_slots_from(id, levels_of(id));
   const Object& built = graph_.at(id);
-  layouts_[built.type] = {built.slots, built.index};
+  layout->second = {built.type, own_level, built.slots, built.index};
 }
 
 void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) {
@@ -380,8 +408,8 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
     const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name);
 
-    slot.declared_type = declared_type(*slot.declaration, slot.declared_in);
-    slot.type = slot.declared_type;
+    const Type declared = declared_type(*slot.declaration, slot.declared_in);
+    slot.type = declared;
     std::vector<Binding> all_becomes;
     for (uint32_t k : mine) {
       const Binding& b = ordered[k];
@@ -393,7 +421,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
       const Binding& becomes = all_becomes.front();
       slot.becomes = becomes;
       Type narrowed = merged_becomes_type(all_becomes);
-      const Type& old = slot.declared_type;
+      const Type& old = declared;
       bool compatible = false;
       if (old.is_primitive() && old.kind != TypeKind::Error) {
         sink_.report(DiagCode::IncompatibleBecomes, becomes.entry->member->path.range,
@@ -425,7 +453,9 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     const Entry& e = *it->first;
     auto slot = obj.index->find(e.path[e.path.size() - 2]);
     if (slot != obj.index->end()) {
-      obj.slots[slot->second].annotations[std::string(e.path.back())] = {*e.value, &it->second->doc->doc};
+      auto& annotations = obj.slots[slot->second].annotations;
+      if (!annotations) annotations = std::make_shared<std::map<std::string, AnnotationValue, std::less<>>>();
+      (*annotations)[std::string(e.path.back())] = {*e.value, &it->second->doc->doc};
     }
   }
 }

@@ -109,8 +109,8 @@ class Evaluator {
   ObjectId new_object(ModelInfo* type, ObjectId owner, std::string name);
   void build_slots(ObjectId id);
   void build_slots_from(ObjectId id, const std::vector<Level>& levels);
-  // Whether an enclosing model's entries reach the instance (assign, add or annotate its attributes).
-  bool targeted_from_outside(const std::vector<Level>& levels) const;
+  // How many levels below its own instance a model's entries reach (0: only its own attributes).
+  uint32_t reach(const ModelInfo* type);
   std::vector<Level> levels_of(ObjectId id) const;
   // The entries aimed at one instance's attributes (see collect_targeting).
   struct Targeting {
@@ -166,12 +166,15 @@ class Evaluator {
       declared_types_;  // a declaration's type resolves the same everywhere  // one message per wrong entry,
                         // however many instances
   int eval_depth_ = 0;
-  // The slot layout of instances laid out by their type alone (see build_slots).
+  // Slot layouts shared by instances of one type reached by the same enclosing entries (see build_slots).
   struct Layout {
+    ModelInfo* type = nullptr;  // after `with` lines of enclosing blocks
+    uint32_t own_level = 0;     // the level of the instance it was built for (bindings' levels count from it)
     std::vector<Slot> slots;
     std::shared_ptr<const SlotIndex> index;
   };
-  std::unordered_map<const ModelInfo*, Layout> layouts_;
+  std::unordered_map<std::string, Layout> layouts_;
+  std::unordered_map<const ModelInfo*, uint32_t> reach_;
 };
 
 // The root model of a loaded file: `name` if given, else the last model declared. Reports

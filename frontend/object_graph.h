@@ -35,8 +35,7 @@ struct Slot {
   std::string_view name;
   const Entry* declaration = nullptr;
   ModelInfo* declared_in = nullptr;
-  Type declared_type;
-  Type type;  // after `becomes`
+  Type type;  // the declared type, or the one `becomes` narrowed it to
   bool optional = false;
   Binding binding;              // the value's source; entry == nullptr when nothing binds it
   Binding becomes;              // the `becomes` that set `type`, if any
@@ -46,7 +45,8 @@ struct Slot {
   bool owns = false;    // value is an object owned by this slot
   bool preset = false;  // value given directly (initializer or native result), not by an entry
   Value value;
-  std::map<std::string, AnnotationValue, std::less<>> annotations;
+  // Annotations on the attribute (few have any; shared by instances with one layout).
+  std::shared_ptr<std::map<std::string, AnnotationValue, std::less<>>> annotations;
 };
 
 // Attribute name -> slot index. Instances whose layout comes from their type alone share one.

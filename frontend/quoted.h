@@ -6,10 +6,14 @@
 
 namespace openplx::frontend {
 
-inline std::string quoted(std::string_view text) {
-  std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
+// Appends `text` as a double-quoted string with escapes; plain runs are copied whole.
+inline void append_quoted(std::string& out, std::string_view text) {
+  out += '"';
+  while (!text.empty()) {
+    const size_t special = text.find_first_of("\"\\\n\t\r");
+    out.append(text.substr(0, special));
+    if (special == std::string_view::npos) break;
+    switch (text[special]) {
       case '"':
         out += "\\\"";
         break;
@@ -22,14 +26,20 @@ inline std::string quoted(std::string_view text) {
       case '\t':
         out += "\\t";
         break;
-      case '\r':
+      default:
         out += "\\r";
         break;
-      default:
-        out += c;
     }
+    text.remove_prefix(special + 1);
   }
-  return out + "\"";
+  out += '"';
+}
+
+inline std::string quoted(std::string_view text) {
+  std::string out;
+  out.reserve(text.size() + 2);
+  append_quoted(out, text);
+  return out;
 }
 
 }  // namespace openplx::frontend

@@ -159,23 +159,37 @@ std::string_view to_string(Quantity quantity) {
 }
 
 std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings) {
-  using frontend::quoted;
-  std::string out = "{\n  \"model\": " + quoted(model_name) + ",\n  \"signals\": [";
+  using frontend::append_quoted;
+  // Appended in place: a large model has tens of thousands of signals.
+  std::string out = "{\n  \"model\": ";
+  append_quoted(out, model_name);
+  out += ",\n  \"signals\": [";
   bool first = true;
   for (const SignalBinding& b : bindings) {
-    std::string names = "[";
-    for (size_t k = 0; k < b.names.size(); ++k) names += (k ? ", " : "") + quoted(b.names[k]);
-    names += "]";
-    out += first ? "\n" : ",\n";
+    out += first ? "\n    {\"path\": " : ",\n    {\"path\": ";
     first = false;
-    out += "    {\"path\": " + quoted(b.path) + ", \"direction\": \"" + (b.input ? "input" : "output") +
-           "\", \"type\": " + quoted(b.type) + ", \"value\": \"" + std::string(to_string(b.value)) +
-           "\", \"unit\": " + quoted(b.unit) + ", \"enabled\": " + (b.enabled ? "true" : "false") +
-           ", \"quantity\": \"" + std::string(to_string(b.quantity)) + "\", \"object\": \"" +
-           std::string(to_string(b.object)) + "\", \"names\": " + names +
-           ", \"sensor\": " + quoted(b.sensor) + ", \"sign\": " + number(b.sign) +
-           ", \"initial\": " + number(b.initial) + ", \"gain\": " + number(b.gain) +
-           ", \"offset\": " + number(b.offset) + ", \"reason\": " + quoted(b.reason) + "}";
+    append_quoted(out, b.path);
+    (out += ", \"direction\": \"") += b.input ? "input" : "output";
+    out += "\", \"type\": ";
+    append_quoted(out, b.type);
+    ((out += ", \"value\": \"") += to_string(b.value)) += "\", \"unit\": ";
+    append_quoted(out, b.unit);
+    (out += ", \"enabled\": ") += b.enabled ? "true" : "false";
+    ((out += ", \"quantity\": \"") += to_string(b.quantity)) += "\", \"object\": \"";
+    (out += to_string(b.object)) += "\", \"names\": [";
+    for (size_t k = 0; k < b.names.size(); ++k) {
+      if (k) out += ", ";
+      append_quoted(out, b.names[k]);
+    }
+    out += "], \"sensor\": ";
+    append_quoted(out, b.sensor);
+    (out += ", \"sign\": ") += number(b.sign);
+    (out += ", \"initial\": ") += number(b.initial);
+    (out += ", \"gain\": ") += number(b.gain);
+    (out += ", \"offset\": ") += number(b.offset);
+    out += ", \"reason\": ";
+    append_quoted(out, b.reason);
+    out += '}';
   }
   return out + "\n  ]\n}\n";
 }

@@ -185,13 +185,11 @@ class ViewBuilder {
       case Role::Kind::None:
         break;
     }
-    // Children in reverse so the stack pops them in declaration order.
-    std::vector<fe::ObjectId> children;
-    for (uint32_t i = 0; i < obj.slots.size(); ++i) {
-      const fe::Slot& slot = ev_.graph().at(id).slots[i];
-      if (slot.owns && slot.value.kind == fe::Value::Kind::Object) children.push_back(slot.value.object);
+    // Children pushed last first, so the stack pops them in declaration order.
+    const std::vector<fe::Slot>& slots = ev_.graph().at(id).slots;
+    for (auto it = slots.rbegin(); it != slots.rend(); ++it) {
+      if (it->owns && it->value.kind == fe::Value::Kind::Object) stack.push_back({it->value.object, node});
     }
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, node});
   }
 
   // What a model is to the view, decided once per model (a large tree has few models and many objects).

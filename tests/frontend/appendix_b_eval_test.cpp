@@ -48,8 +48,9 @@ class AppendixBEval : public openplx::testing::EvalTest {
   std::string slot_annotation(const std::string& path, const std::string& name) {
     const fe::Slot* s = slot(path);
     if (!s) return "<no slot>";
-    auto it = s->annotations.find(name);
-    return it == s->annotations.end() ? "<none>" : constant(*it->second.doc, it->second.expr);
+    if (!s->annotations) return "<none>";
+    auto it = s->annotations->find(name);
+    return it == s->annotations->end() ? "<none>" : constant(*it->second.doc, it->second.expr);
   }
   // The model annotation `name` of the root's type, or "<none>".
   std::string root_annotation(const std::string& name) {
