@@ -161,7 +161,9 @@ std::string_view to_string(Quantity quantity) {
 std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings) {
   using frontend::append_quoted;
   // Appended in place: a large model has tens of thousands of signals.
-  std::string out = "{\n  \"model\": ";
+  std::string out;
+  out.reserve(64 + 320 * bindings.size());  // about what one binding takes: few reallocations
+  out += "{\n  \"model\": ";
   append_quoted(out, model_name);
   out += ",\n  \"signals\": [";
   bool first = true;
@@ -191,7 +193,8 @@ std::string manifest_json(std::string_view model_name, const std::vector<SignalB
     append_quoted(out, b.reason);
     out += '}';
   }
-  return out + "\n  ]\n}\n";
+  out += "\n  ]\n}\n";
+  return out;
 }
 
 }  // namespace openplx::mjcf

@@ -124,7 +124,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   const std::string xml = emitted.document.to_string();
   if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
   if (options.output) text << xml;  // without -o the model is only checked
-  manifest = emitted.manifest_json;
+  manifest = std::move(emitted.manifest_json);
   return true;
 }
 
