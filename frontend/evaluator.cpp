@@ -320,12 +320,11 @@ void Evaluator::build_slots(ObjectId id) {
     Object& obj = graph_.at(id);
     obj.type = l.type;
     obj.slots = l.slots;
-    for (Slot& slot : obj.slots) {
-      for (Binding* b : {&slot.binding, &slot.becomes}) {
-        if (!b->entry) continue;
-        b->level = own_level - (l.own_level - b->level);
-        b->self = chain[b->level];
-      }
+    for (Slot& slot : obj.slots) {  // rebind the entries to this instance's own ancestors
+      Binding& b = slot.binding;
+      if (!b.entry) continue;
+      b.level = own_level - (l.own_level - b.level);
+      b.self = chain[b.level];
     }
     obj.index = l.index;
     return;
@@ -419,7 +418,6 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     }
     if (!all_becomes.empty()) {
       const Binding& becomes = all_becomes.front();
-      slot.becomes = becomes;
       Type narrowed = merged_becomes_type(all_becomes);
       const Type& old = declared;
       bool compatible = false;

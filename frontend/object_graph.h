@@ -38,7 +38,6 @@ struct Slot {
   Type type;  // the declared type, or the one `becomes` narrowed it to
   bool optional = false;
   Binding binding;              // the value's source; entry == nullptr when nothing binds it
-  Binding becomes;              // the `becomes` that set `type`, if any
   bool explicit_value = false;  // assigned (not a declaration default), itself or any part of it
   bool entries_below = false;   // some entry targets a part of it (an error unless it owns an instance)
   enum class State : uint8_t { Pending, Evaluating, Done } state = State::Pending;
