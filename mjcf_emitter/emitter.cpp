@@ -64,6 +64,7 @@ class Emitter {
     emit_drivetrain(root);
     emit_joint_couplings(root);
     emit_contact_pairs(root);
+    emit_collision_filters(root);
     emit_actuators(root);
     bind_signals(root, out.signals);
     if (assets_->children().empty()) drop_empty(root, "asset");
@@ -679,6 +680,91 @@ class Emitter {
       }
     }
   }
+
+  // Simulation.DisableCollisionPair. MuJoCo excludes contacts per pair of bodies, so each group becomes the
+  // bodies that hold its systems', bodies' and geometries' shapes; a group naming only some of a body's
+  // colliding geometries is widened to the whole body, with a warning.
+  void emit_collision_filters(Element& root) {
+    if (view_.collision_filters.empty()) return;
+    Element* contact = nullptr;
+    for (const std::unique_ptr<Element>& e : root.children()) {
+      if (e->name() == "contact") contact = e.get();
+    }
+    std::set<std::pair<std::string, std::string>> excluded;
+    for (const std::unique_ptr<Element>& e : contact->children()) {
+      if (e->name() == "exclude") excluded.insert({*e->get("body1"), *e->get("body2")});
+    }
+    for (const sn::CollisionFilter& f : view_.collision_filters) {
+      std::vector<std::string> widened;
+      const std::set<std::string> first = group_bodies(f.group1, widened);
+      const std::set<std::string> second = group_bodies(f.group2, widened);
+      for (const std::string& body : widened) {
+        warn(f.where, "`" + f.path + "`: MuJoCo excludes contacts between whole bodies, so all of `" + body +
+                          "`'s geometries were excluded, not only those its group names");
+      }
+      for (const std::string& a : first) {
+        for (const std::string& b : second) {
+          if (a == b) continue;  // a body's own geometries never collide in MuJoCo
+          const auto pair = std::minmax(a, b);
+          if (excluded.insert({pair.first, pair.second}).second)
+            contact->add("exclude").set("body1", pair.first).set("body2", pair.second);
+        }
+      }
+    }
+  }
+
+  // The MuJoCo bodies holding the shapes of a Simulation.CollisionGroup.
+  std::set<std::string> group_bodies(fe::ObjectId group, std::vector<std::string>& widened) {
+    std::set<std::string> bodies;
+    if (group == fe::kNoObject) return bodies;
+    std::unordered_map<fe::ObjectId, int> node;
+    for (size_t n = 0; n < view_.nodes.size(); ++n) node[view_.nodes[n].object] = static_cast<int>(n);
+    auto listed = [&](const char* attribute) {
+      std::vector<fe::ObjectId> out;
+      const fe::Value* v = ev_.value(group, attribute);
+      if (v && v->kind == fe::Value::Kind::Array) {
+        for (const fe::Value& item : v->array)
+          if (item.kind == fe::Value::Kind::Object) out.push_back(item.object);
+      }
+      return out;
+    };
+    auto within = [&](int n, int ancestor) {
+      for (; n >= 0; n = view_.nodes[n].parent) {
+        if (n == ancestor) return true;
+      }
+      return false;
+    };
+    for (fe::ObjectId body : listed("bodies")) {
+      if (auto it = node.find(body); it != node.end()) bodies.insert(mujoco_body(it->second));
+    }
+    for (fe::ObjectId system : listed("systems")) {
+      auto it = node.find(system);
+      if (it == node.end()) continue;
+      for (const sn::Geometry& g : view_.geometries) {
+        if (g.collides && within(g.owner, it->second)) bodies.insert(mujoco_body(g.owner));
+      }
+    }
+    std::set<fe::ObjectId> geometries;
+    for (fe::ObjectId g : listed("geometries")) geometries.insert(g);
+    std::set<int> owners;
+    for (const sn::Geometry& g : view_.geometries) {
+      if (geometries.count(g.object)) owners.insert(g.owner);
+    }
+    for (int owner : owners) {
+      const std::string body = mujoco_body(owner);
+      bodies.insert(body);
+      for (const sn::Geometry& g : view_.geometries) {
+        if (g.owner == owner && g.collides && !geometries.count(g.object)) {
+          if (std::find(widened.begin(), widened.end(), body) == widened.end()) widened.push_back(body);
+          break;
+        }
+      }
+    }
+    return bodies;
+  }
+
+  // The MuJoCo body a node's shapes end up in: its own, or the world for a system's (emit_world_geoms).
+  std::string mujoco_body(int n) { return n >= 0 && is_body(n) ? name(view_.nodes[n].path) : "world"; }
 
   // One <pair> per pair of colliding geometries whose materials a SurfaceContact model names.
   void emit_contact_pairs(Element& root) {

@@ -37,6 +37,7 @@ class ViewBuilder {
     mimic_ = program.loaded_model("Urdf.Mimic");
     joint_properties_ = program.loaded_model("Urdf.JointProperties");
     package_path_ = program.loaded_model("Urdf.PackagePath");
+    collision_filter_ = program.loaded_model("Simulation.DisableCollisionPair");
     // Drivetrain parts beyond shafts, gears, differentials, hinge/prismatic actuators and rotational velocity
     // motors are not mapped: each gets its warning instead of vanishing, as do collision-group filters.
     for (const char* name :
@@ -44,8 +45,7 @@ class ViewBuilder {
           "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.LinearBody",
           "DriveTrain.ViscousGear", "DriveTrain.TorqueLimitedSlipDifferential", "DriveTrain.GearBox",
           "DriveTrain.ManualClutch", "DriveTrain.ManualBrake", "DriveTrain.EmpiricalTorqueConverter",
-          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.TorqueMotor", "DriveTrain.PowerSource",
-          "Simulation.DisableCollisionPair"}) {
+          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.TorqueMotor", "DriveTrain.PowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
@@ -182,6 +182,10 @@ class ViewBuilder {
               dir && dir->kind == fe::Value::Kind::String ? dir->string_value : "";
         }
         break;
+      case Role::Kind::CollisionFilter:
+        view_.collision_filters.push_back(
+            {id, ev_.graph().path(id), object(id, "group1"), object(id, "group2"), where_of(id)});
+        break;
       case Role::Kind::None:
         break;
     }
@@ -208,7 +212,8 @@ class ViewBuilder {
       ContactModel,
       Mimic,
       JointProperties,
-      PackagePath
+      PackagePath,
+      CollisionFilter
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
@@ -228,6 +233,7 @@ class ViewBuilder {
     role.kind = sub(mimic_)                                                ? K::Mimic
                 : sub(joint_properties_)                                   ? K::JointProperties
                 : sub(package_path_)                                       ? K::PackagePath
+                : sub(collision_filter_)                                   ? K::CollisionFilter
                 : sub(shaft_)                                              ? K::Shaft
                 : sub(gear_) || sub(differential_) || sub(drive_actuator_) ? K::Coupling
                 : sub(system_) || sub(body_)                               ? K::Node
@@ -646,6 +652,7 @@ class ViewBuilder {
   fe::ModelInfo* mimic_ = nullptr;
   fe::ModelInfo* joint_properties_ = nullptr;
   fe::ModelInfo* package_path_ = nullptr;
+  fe::ModelInfo* collision_filter_ = nullptr;
   std::map<std::string, std::string> packages_;  // Urdf.PackagePath: package name -> folder
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::unordered_map<fe::ObjectId, int> connector_of_;

@@ -176,6 +176,14 @@ struct JointProperties {
   frontend::SourceRange where;
 };
 
+// A Simulation.DisableCollisionPair: no contacts between what its two CollisionGroups hold.
+struct CollisionFilter {
+  frontend::ObjectId object;
+  std::string path;
+  frontend::ObjectId group1 = frontend::kNoObject, group2 = frontend::kNoObject;
+  frontend::SourceRange where;
+};
+
 struct PhysicsView {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
@@ -191,6 +199,7 @@ struct PhysicsView {
   std::vector<DriveCoupling> couplings;
   std::vector<JointCoupling> joint_couplings;
   std::vector<JointProperties> joint_properties;
+  std::vector<CollisionFilter> collision_filters;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;

@@ -477,22 +477,77 @@ TEST_F(Mjcf, UnmappedDriveTrainPartsAreWarned) {
   accept_all_diags();
 }
 
-TEST_F(Mjcf, CollisionGroupFiltersAreWarned) {
+// Simulation.DisableCollisionPair becomes body-pair excludes: two balls dropped onto a ground box in one
+// group pass through it, while a ball outside the group lands on it (1 kg spheres, r = 0.1 m, starting at
+// z = 0.5 over a 0.2 m thick plate whose top is z = 0).
+TEST_F(Mjcf, CollisionGroupFiltersBecomeExcludes) {
   ASSERT_TRUE(
-      load("B is Physics3D.Bodies.RigidBody:\n"
+      load("Ball is Physics3D.Bodies.RigidBody:\n"
+           "    inertia.mass: 1.0\n"
            "    geometry is Physics3D.Geometries.Sphere:\n"
            "        radius: 0.1\n"
            "Scene is Physics3D.System:\n"
-           "    a is B\n"
-           "    group is Simulation.CollisionGroup:\n"
-           "        bodies: [a]\n"
+           "    ground is Physics3D.Bodies.RigidBody:\n"
+           "        is_dynamic: false\n"
+           "        kinematics.local_transform.position: {0, 0, -0.1}\n"
+           "        plate is Physics3D.Geometries.Box:\n"
+           "            size: {10, 10, 0.2}\n"
+           "    a is Ball:\n"
+           "        kinematics.local_transform.position: {0, 0, 0.5}\n"
+           "    b is Ball:\n"
+           "        kinematics.local_transform.position: {1, 0, 0.5}\n"
+           "    c is Ball:\n"
+           "        kinematics.local_transform.position: {2, 0, 0.5}\n"
+           "    balls is Simulation.CollisionGroup:\n"
+           "        bodies: [a, b]\n"
+           "    floor is Simulation.CollisionGroup:\n"
+           "        geometries: [ground.plate]\n"
            "    off is Simulation.DisableCollisionPair:\n"
-           "        group1: group\n"
-           "        group2: group\n"))
+           "        group1: balls\n"
+           "        group2: floor\n"))
       << all_diags();
-  emit("groups");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`off` is a Simulation.DisableCollisionPair");
-  accept_all_diags();
+  mjModel* m = load_mujoco(emit("groups"));
+  ASSERT_NE(m, nullptr);
+  EXPECT_TRUE(sink_.diagnostics().empty()) << all_diags();
+  EXPECT_EQ(m->nexclude, 2);
+  mjData* d = mj_makeData(m);
+  for (int step = 0; step < 500; ++step) mj_step(m, d);  // 1 s
+  auto z = [&](const char* body) { return d->xpos[3 * mj_name2id(m, mjOBJ_BODY, body) + 2]; };
+  EXPECT_LT(z("a"), -1.0);  // fell through: free fall from 0.5 m for 1 s ends near -4.4 m
+  EXPECT_LT(z("b"), -1.0);
+  EXPECT_NEAR(z("c"), 0.1, 0.01);  // resting on the plate (MuJoCo's soft contact sinks it a little)
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+// A group that names only some of a body's colliding geometries: MuJoCo can only exclude the whole body.
+TEST_F(Mjcf, CollisionGroupOfSomeGeometriesIsWidenedWithAWarning) {
+  ASSERT_TRUE(
+      load("Scene is Physics3D.System:\n"
+           "    a is Physics3D.Bodies.RigidBody:\n"
+           "        one is Physics3D.Geometries.Sphere:\n"
+           "            radius: 0.1\n"
+           "        two is Physics3D.Geometries.Sphere:\n"
+           "            radius: 0.1\n"
+           "    b is Physics3D.Bodies.RigidBody:\n"
+           "        geometry is Physics3D.Geometries.Sphere:\n"
+           "            radius: 0.1\n"
+           "    part is Simulation.CollisionGroup:\n"
+           "        geometries: [a.one]\n"
+           "    other is Simulation.CollisionGroup:\n"
+           "        bodies: [b]\n"
+           "    off is Simulation.DisableCollisionPair:\n"
+           "        group1: part\n"
+           "        group2: other\n"))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("widened"));
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->nexclude, 1);
+  expect_diag_containing(
+      fe::DiagCode::MjcfUnmapped,
+      "`off`: MuJoCo excludes contacts between whole bodies, so all of `a`'s geometries were "
+      "excluded");
+  mj_deleteModel(m);
 }
 
 TEST_F(Mjcf, InitialVelocitiesAreWarned) {
