@@ -6,7 +6,6 @@
 // id of an object owned elsewhere (or of a const singleton).
 #pragma once
 
-#include <deque>
 #include <map>
 #include <memory>
 #include <string>
@@ -68,8 +67,27 @@ struct Object {
   bool has(std::string_view slot) const { return index->count(slot) != 0; }
 };
 
+// Elements by index in fixed chunks that never move, so references stay valid while evaluation adds
+// objects; indexing is a shift and a mask (std::deque keeps only four Objects per block and divides).
+template <typename T>
+class ChunkedVector {
+ public:
+  size_t size() const { return size_; }
+  T& operator[](size_t i) { return chunks_[i >> kShift][i & kMask]; }
+  const T& operator[](size_t i) const { return chunks_[i >> kShift][i & kMask]; }
+  T& emplace_back() {
+    if ((size_ >> kShift) == chunks_.size()) chunks_.push_back(std::make_unique<T[]>(kMask + 1));
+    return (*this)[size_++];
+  }
+
+ private:
+  static constexpr size_t kShift = 10, kMask = (size_t{1} << kShift) - 1;
+  std::vector<std::unique_ptr<T[]>> chunks_;
+  size_t size_ = 0;
+};
+
 struct ObjectGraph {
-  std::deque<Object> objects;  // stable references: evaluation creates objects while others are in use
+  ChunkedVector<Object> objects;  // stable references: evaluation creates objects while others are in use
   ObjectId root = kNoObject;
 
   Object& at(ObjectId id) { return objects[id]; }

@@ -27,7 +27,8 @@ class AppendixBEval : public openplx::testing::EvalTest {
   // Number of instances in the graph whose type is named `name`.
   size_t instances_of(const std::string& name) const {
     size_t n = 0;
-    for (const fe::Object& o : evaluator_->graph().objects) n += o.type && o.type->name == name;
+    const auto& objects = evaluator_->graph().objects;
+    for (size_t i = 0; i < objects.size(); ++i) n += objects[i].type && objects[i].type->name == name;
     return n;
   }
   // An annotation constant as text: strings unquoted, Ints as digits, Bools as true/false.
