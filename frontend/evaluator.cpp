@@ -288,7 +288,8 @@ uint32_t Evaluator::reach(const ModelInfo* type) {
 }
 
 void Evaluator::build_slots(ObjectId id) {
-  std::vector<ObjectId> chain;  // root first
+  std::vector<ObjectId>& chain = chain_;  // root first; reused, building slots creates no objects
+  chain.clear();
   for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
   std::reverse(chain.begin(), chain.end());
   const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);

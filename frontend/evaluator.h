@@ -175,6 +175,7 @@ class Evaluator {
   };
   std::unordered_map<std::string, Layout> layouts_;
   std::unordered_map<const ModelInfo*, uint32_t> reach_;
+  std::vector<ObjectId> chain_;  // build_slots' ancestor chain
 };
 
 // The root model of a loaded file: `name` if given, else the last model declared. Reports
