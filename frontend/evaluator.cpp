@@ -408,8 +408,8 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
     const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name);
 
-    const Type declared = declared_type(*slot.declaration, slot.declared_in);
-    slot.type = declared;
+    const Type& declared = declared_type(*slot.declaration, slot.declared_in);
+    slot.type = &declared;
     std::vector<Binding> all_becomes;
     for (uint32_t k : mine) {
       const Binding& b = ordered[k];
@@ -439,7 +439,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
                      "Type " + narrowed.describe() + " is not compatible with " + old.describe());
         narrowed = {};
       }
-      slot.type = narrowed;
+      slot.type = &narrowed_types_.emplace_back(std::move(narrowed));
     }
     slot.binding = pick_value(targeting, mine, true);
     auto part = targeting.below.find(slot.name);
@@ -459,12 +459,11 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
   }
 }
 
-Type Evaluator::declared_type(const Entry& declaration, ModelInfo* model) {
+const Type& Evaluator::declared_type(const Entry& declaration, ModelInfo* model) {
   auto it = declared_types_.find(&declaration);
   if (it != declared_types_.end()) return it->second;
   Type type = resolve_type(model->doc, declaration.member->type);
-  declared_types_.emplace(&declaration, type);
-  return type;
+  return declared_types_.emplace(&declaration, std::move(type)).first->second;  // nodes never move
 }
 
 ObjectId Evaluator::instantiate_root(ModelInfo* model) {
@@ -591,7 +590,7 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   ++eval_depth_;
   Value result;
   bool owns = false;
-  const Type type = slot->type;
+  const Type& type = *slot->type;
   if (type.kind == TypeKind::Error) {
     result = Value::error();
   } else if (!slot->binding.entry) {
@@ -649,7 +648,7 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
 }
 
 Value Evaluator::owned_default(ObjectId id, Slot& slot) {
-  ModelInfo* model = slot.type.model;
+  ModelInfo* model = slot.type->model;
   if (model->is_trait) {
     sink_.report(DiagCode::CannotInstantiateTrait, slot.declaration->member->range,
                  "Cannot instantiate trait " + model->qualified + " for " + slot_path(id, slot.name) +
@@ -1024,7 +1023,7 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
   std::vector<uint32_t> fields;
   for (uint32_t i = 0; i < graph_.at(object).slots.size(); ++i) {
     const Slot& slot = graph_.at(object).slots[i];
-    if (slot.type.is_primitive() && !slot.type.is_array && slot.type.kind != TypeKind::Error)
+    if (slot.type->is_primitive() && !slot.type->is_array && slot.type->kind != TypeKind::Error)
       fields.push_back(i);
   }
   if (e.operands.size() != fields.size()) {
@@ -1034,7 +1033,7 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
     return Value::error();
   }
   for (size_t i = 0; i < fields.size(); ++i) {
-    const Type field_type = graph_.at(object).slots[fields[i]].type;
+    const Type field_type = *graph_.at(object).slots[fields[i]].type;
     Value v = eval(e.operands[i], scope, &field_type);
     const std::string field_name(graph_.at(object).slots[fields[i]].name);
     v = convert(std::move(v), field_type, scope.doc->doc.expr(e.operands[i]).range,

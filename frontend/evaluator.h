@@ -7,6 +7,7 @@
 // with the user's source line; a failed value is poisoned (Value::Kind::Error) and does not cascade.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <optional>
 #include <span>
@@ -124,7 +125,7 @@ class Evaluator {
   static Binding pick_value(const Targeting& t, const std::vector<uint32_t>& candidates,
                             bool include_declarations);
   const Entry* entry_below(ObjectId id, std::string_view slot) const;
-  Type declared_type(const Entry& declaration, ModelInfo* model);
+  const Type& declared_type(const Entry& declaration, ModelInfo* model);
   Type merged_becomes_type(const std::vector<Binding>& all);
   // An entry written with a 0.17.8 attribute name (`charges`) that binds this slot (`connectors`).
   static bool is_renamed_to(const Object& object, std::string_view written, std::string_view slot);
@@ -175,7 +176,8 @@ class Evaluator {
   };
   std::unordered_map<std::string, Layout> layouts_;
   std::unordered_map<const ModelInfo*, uint32_t> reach_;
-  std::vector<ObjectId> chain_;  // build_slots' ancestor chain
+  std::vector<ObjectId> chain_;      // build_slots' ancestor chain
+  std::deque<Type> narrowed_types_;  // types `becomes` gave slots (slots point at them)
 };
 
 // The root model of a loaded file: `name` if given, else the last model declared. Reports

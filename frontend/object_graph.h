@@ -34,7 +34,8 @@ struct Slot {
   std::string_view name;
   const Entry* declaration = nullptr;
   ModelInfo* declared_in = nullptr;
-  Type type;  // the declared type, or the one `becomes` narrowed it to
+  const Type* type =
+      nullptr;  // the declared type or the one `becomes` narrowed it to (owned by the Evaluator)
   bool optional = false;
   Binding binding;              // the value's source; entry == nullptr when nothing binds it
   bool explicit_value = false;  // assigned (not a declaration default), itself or any part of it

@@ -45,9 +45,9 @@ struct Value {
   enum class Kind : uint8_t { Unset, Error, Int, Real, Bool, String, Object, Array };
   Kind kind = Kind::Unset;
   bool bool_value = false;
+  ObjectId object = kNoObject;  // beside the two small fields: no padding
   int64_t int_value = 0;
   double real_value = 0.0;
-  ObjectId object = kNoObject;
   std::string string_value;
   std::vector<Value> array;
 

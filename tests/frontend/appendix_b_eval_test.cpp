@@ -118,7 +118,7 @@ TEST_F(AppendixBEval, Case06_IntLiteralIntoReal) {
   EXPECT_EQ(value("r"), "4.0");
   ASSERT_NE(slot("r"), nullptr);
   EXPECT_EQ(slot("r")->value.kind, fe::Value::Kind::Real);
-  EXPECT_EQ(slot("r")->type.kind, fe::TypeKind::Real);
+  EXPECT_EQ(slot("r")->type->kind, fe::TypeKind::Real);
 }
 
 TEST_F(AppendixBEval, Case07_IntegralRealIntoInt) {
@@ -987,8 +987,8 @@ TEST_F(AppendixBEval, Case91_DeclaredOperator) {
   expect_diag(fe::DiagCode::NoImplementation, 7, 17);
   EXPECT_EQ(sink_.diagnostics().size(), 1u) << all_diags();
   ASSERT_NE(slot("t"), nullptr);
-  ASSERT_EQ(slot("t")->type.kind, fe::TypeKind::Model);
-  EXPECT_EQ(slot("t")->type.model->name, "Money");
+  ASSERT_EQ(slot("t")->type->kind, fe::TypeKind::Model);
+  EXPECT_EQ(slot("t")->type->model->name, "Money");
 }
 
 TEST_F(AppendixBEval, Case92_StaticCallOnInstance) {
