@@ -66,6 +66,7 @@ class Emitter {
     emit_contact_pairs(root);
     emit_collision_filters(root);
     emit_actuators(root);
+    emit_initial_velocities(root);
     bind_signals(root, out.signals);
     if (assets_->children().empty()) drop_empty(root, "asset");
     for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
@@ -251,11 +252,14 @@ class Emitter {
     if (free_roots_.count(node)) body.add("freejoint").set("name", name(n.path));
     if (edges_[node].mate >= 0) emit_joints(body, node, edges_[node].mate);
     emit_inertial(body, node);
-    if (!n.body.initial_linear_velocity.isZero() || !n.body.initial_angular_velocity.isZero()) {
+    const bool moving = !n.body.initial_linear_velocity.isZero() || !n.body.initial_angular_velocity.isZero();
+    if (moving && free_roots_.count(node)) {
+      initial_velocities_.push_back(node);  // written as the "initial" keyframe (emit_initial_velocities)
+    } else if (moving) {
       warn(n.where,
            "`" + n.path +
-               ".kinematics.initial_local_*_velocity`: MJCF has no initial velocity; the body starts at "
-               "rest (the runtime's velocity inputs can set a free body's velocity)");
+               ".kinematics.initial_local_*_velocity`: only a free body's initial velocity maps to MuJoCo "
+               "(a keyframe); this body starts at rest");
     }
     for (const sn::Geometry* g : geometries_of(node)) emit_geom(body, *g, g->local, !n.body.dynamic);
     return body;
@@ -679,6 +683,50 @@ class Emitter {
         }
       }
     }
+  }
+
+  // Free bodies' initial velocities as keyframe "initial" (MJCF has no initial velocity; MuJoCo fills the
+  // key's qpos with qpos0). The runtime starts from it; MuJoCo users call mj_resetDataKeyframe. OpenPLX gives
+  // both velocities in the owning system's frame; a free joint's qvel is the world linear velocity, then the
+  // angular velocity in the body's frame.
+  void emit_initial_velocities(Element& root) {
+    if (initial_velocities_.empty()) return;
+    std::map<const Element*, int> dof_address;
+    int nv = 0;
+    std::vector<const Element*> stack{world_};  // MuJoCo numbers dofs body by body, depth first
+    while (!stack.empty()) {
+      const Element* body = stack.back();
+      stack.pop_back();
+      dof_address[body] = nv;
+      for (const std::unique_ptr<Element>& e : body->children()) {
+        if (e->name() == "freejoint") nv += 6;
+        if (e->name() == "joint") {
+          const std::string* type = e->get("type");
+          nv += !type || *type == "hinge" || *type == "slide" ? 1 : *type == "ball" ? 3 : 6;
+        }
+      }
+      const auto& children = body->children();
+      for (auto it = children.rbegin(); it != children.rend(); ++it) {
+        if ((*it)->name() == "body") stack.push_back(it->get());
+      }
+    }
+    std::vector<double> qvel(static_cast<size_t>(nv), 0.0);
+    for (int node : initial_velocities_) {
+      const sn::FrameNode& n = view_.nodes[node];
+      const Eigen::Matrix3d system = n.parent >= 0 ? snap_.node_world[n.parent].rotation.toRotationMatrix()
+                                                   : Eigen::Matrix3d::Identity();
+      const Eigen::Matrix3d body = snap_.node_world[node].rotation.toRotationMatrix();
+      const Eigen::Vector3d linear = system * n.body.initial_linear_velocity;
+      const Eigen::Vector3d angular = body.transpose() * (system * n.body.initial_angular_velocity);
+      const size_t at = static_cast<size_t>(dof_address.at(body_element_.at(node)));
+      for (int k = 0; k < 3; ++k) {
+        qvel[at + k] = linear[k];
+        qvel[at + 3 + k] = angular[k];
+      }
+    }
+    std::string text;
+    for (double v : qvel) text += (text.empty() ? "" : " ") + number(v);
+    root.add("keyframe").add("key").set("name", "initial").set("qvel", text);
   }
 
   // Simulation.DisableCollisionPair. MuJoCo excludes contacts per pair of bodies, so each group becomes the
@@ -1539,6 +1587,7 @@ class Emitter {
   std::vector<bool> in_tree_;
   std::set<int> tree_mates_;
   std::set<int> free_roots_;
+  std::vector<int> initial_velocities_;  // free bodies that start moving
   std::map<int, Element*> body_element_;
   std::map<int, std::vector<Element*>> joint_of_mate_;
   std::map<int, double> mass_on_geoms_;

@@ -13,6 +13,9 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   state->m = loaded.model;
   state->d = mj_makeData(state->m);
   if (!state->d) throw LoadError(path + ": error: MuJoCo could not allocate the simulation data\n");
+  // Free bodies' initial velocities come as the emitter's "initial" keyframe.
+  if (const int key = mj_name2id(state->m, mjOBJ_KEY, "initial"); key >= 0)
+    mj_resetDataKeyframe(state->m, state->d, key);
   state->root = std::move(loaded.root_name);
   state->xml = std::move(loaded.xml);
   state->warnings = std::move(loaded.warnings);

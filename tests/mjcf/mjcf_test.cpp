@@ -550,21 +550,66 @@ TEST_F(Mjcf, CollisionGroupOfSomeGeometriesIsWidenedWithAWarning) {
   mj_deleteModel(m);
 }
 
-TEST_F(Mjcf, InitialVelocitiesAreWarned) {
+// A free body's initial velocities (given in its system's frame) become the "initial" keyframe. The system is
+// turned 90° about z, so {1, 0, 0} m/s is world +y and {2, 0, 0} rad/s is world +y too; the body itself is
+// turned about x so that its frame differs from the world's.
+TEST_F(Mjcf, FreeBodyInitialVelocitiesBecomeTheInitialKeyframe) {
   ASSERT_TRUE(
       load("B is Physics3D.Bodies.RigidBody:\n"
            "    inertia.mass: 1\n"
            "    geometry is Physics3D.Geometries.Sphere:\n"
            "        radius: 0.1\n"
-           "Scene is Physics3D.System:\n"
+           "Turned is Physics3D.System:\n"
            "    moving is B:\n"
+           "        kinematics.local_transform.rotation: Math.Quat.from_to({0, 0, 1}, {0, 1, 0})\n"
            "        kinematics.initial_local_linear_velocity: {1, 0, 0}\n"
-           "    resting is B\n"))
+           "        kinematics.initial_local_angular_velocity: {2, 0, 0}\n"
+           "Scene is Physics3D.System:\n"
+           "    resting is B\n"
+           "    turned is Turned:\n"
+           "        local_transform.rotation: Math.Quat.from_to({1, 0, 0}, {0, 1, 0})\n"))
       << all_diags();
-  emit("initial_velocity");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`moving.kinematics.initial_local_*_velocity`");
-  for (const fe::Diagnostic& d : sink_.diagnostics())
-    EXPECT_EQ(d.message.find("`resting"), std::string::npos);
+  mjModel* m = load_mujoco(emit("initial_velocity"));
+  ASSERT_NE(m, nullptr);
+  EXPECT_TRUE(sink_.diagnostics().empty()) << all_diags();
+  const int key = mj_name2id(m, mjOBJ_KEY, "initial");
+  ASSERT_GE(key, 0);
+  mjData* d = mj_makeData(m);
+  mj_resetDataKeyframe(m, d, key);
+  mj_forward(m, d);
+  const int moving = mj_name2id(m, mjOBJ_BODY, "turned.moving");
+  const int resting = mj_name2id(m, mjOBJ_BODY, "resting");
+  mjtNum velocity[6];  // world frame: angular, then linear
+  mj_objectVelocity(m, d, mjOBJ_BODY, moving, velocity, 0);
+  const mjtNum expected[6] = {0, 2, 0, 0, 1, 0};
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(velocity[k], expected[k], 1e-12) << k;
+  mj_objectVelocity(m, d, mjOBJ_BODY, resting, velocity, 0);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(velocity[k], 0.0) << k;
+  mj_deleteData(d);
+  mj_deleteModel(m);
+}
+
+// A jointed body's initial velocity has no MuJoCo counterpart here: warned, not dropped silently.
+TEST_F(Mjcf, JointedBodyInitialVelocityIsWarned) {
+  ASSERT_TRUE(
+      load("Scene is Physics3D.System:\n"
+           "    anchor is Physics3D.Interactions.MateConnector:\n"
+           "        main_axis: {0, 1, 0}\n"
+           "    arm is Physics3D.Bodies.RigidBody:\n"
+           "        inertia.mass: 1\n"
+           "        kinematics.initial_local_angular_velocity: {0, 1, 0}\n"
+           "        geometry is Physics3D.Geometries.Sphere:\n"
+           "            radius: 0.1\n"
+           "        pivot is Physics3D.Interactions.MateConnector:\n"
+           "            main_axis: {0, 1, 0}\n"
+           "    hinge is Physics3D.Interactions.Hinge:\n"
+           "        connectors: [anchor, arm.pivot]\n"))
+      << all_diags();
+  emit("jointed_velocity");
+  expect_diag_containing(
+      fe::DiagCode::MjcfUnmapped,
+      "`arm.kinematics.initial_local_*_velocity`: only a free body's initial velocity maps");
+  EXPECT_EQ(xml_.find("keyframe"), std::string::npos);
   accept_all_diags();
 }
 
