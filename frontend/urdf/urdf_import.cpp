@@ -7,6 +7,7 @@
 #include <charconv>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "frontend/urdf/physical_inertia.h"
@@ -344,11 +345,23 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
                   "        ");
     }
     if (link->inertial) inertial(c, *link);
+    // Geometries keep their URDF names (MuJoCo's compiler drops them) behind a prefix that cannot clash with
+    // a body attribute: `collision_<name>`, or `collision_<index>` when unnamed or named twice.
+    std::set<std::string> taken;
+    auto geometry_name = [&](const char* kind, const std::string& urdf_name, size_t k) {
+      const bool usable = !urdf_name.empty() && urdf_name.find_first_of("`\r\n") == std::string::npos;
+      std::string name = std::string(kind) + "_" + (usable ? urdf_name : std::to_string(k));
+      if (!taken.insert(name).second) {
+        name = std::string(kind) + "_" + std::to_string(k);
+        taken.insert(name);
+      }
+      return name;
+    };
     for (size_t k = 0; k < link->collision_array.size(); ++k) {
       const auto& col = link->collision_array[k];
       if (!col->geometry) continue;
       w.from(shape_element(doc, link->name, "collision", k));
-      if (!geometry(c, "collision_" + std::to_string(k), *col->geometry, col->origin, false, ""))
+      if (!geometry(c, geometry_name("collision", col->name, k), *col->geometry, col->origin, false, ""))
         return result;
     }
     for (size_t k = 0; k < link->visual_array.size(); ++k) {
@@ -357,7 +370,8 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
       w.from(shape_element(doc, link->name, "visual", k));
       const std::string material =
           v->material ? c.materials[v->material_name.empty() ? link->name + "/" : v->material_name] : "";
-      if (!geometry(c, "visual_" + std::to_string(k), *v->geometry, v->origin, true, material)) return result;
+      if (!geometry(c, geometry_name("visual", v->name, k), *v->geometry, v->origin, true, material))
+        return result;
     }
     w.from(doc.link(link->name));
     if (link->name == root)

@@ -26,7 +26,7 @@ std::string arm_urdf(const std::string& arm_inertia = "ixx=\"0.01\" iyy=\"0.01\"
   <material name="red"><color rgba="1 0 0 1"/></material>
   <link name="base">
     <inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
-    <visual><geometry><box size="0.1 0.1 0.1"/></geometry><material name="red"/></visual>
+    <visual name="shell"><geometry><box size="0.1 0.1 0.1"/></geometry><material name="red"/></visual>
   </link>
   <link name="arm">
     <inertial><origin xyz="0.25 0 0"/><mass value="1"/><inertia )" +
@@ -150,8 +150,9 @@ TEST_F(UrdfRobotProperties, MaterialsKeepTheirColours) {
     const float* c = m->mat_rgba + 4 * m->geom_matid[g];
     return std::vector<float>(c, c + 4);
   };
-  EXPECT_EQ(rgba("base.visual_0"), (std::vector<float>{1, 0, 0, 1}));    // a named robot-level material
-  EXPECT_EQ(rgba("arm.visual_0"), (std::vector<float>{0, 0, 1, 0.5f}));  // an inline one
+  // The base's visual keeps its URDF name (`shell`); the arm's has none and is numbered.
+  EXPECT_EQ(rgba("base.visual_shell"), (std::vector<float>{1, 0, 0, 1}));  // a named robot-level material
+  EXPECT_EQ(rgba("arm.visual_0"), (std::vector<float>{0, 0, 1, 0.5f}));    // an inline one
 }
 
 // Urdf.PackagePath decides where package://my_pkg/ is; without one the import looks beside and above the URDF
