@@ -337,7 +337,7 @@ void Evaluator::build_slots(ObjectId id) {
 
 void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) {
   const uint32_t own_level = static_cast<uint32_t>(levels.size() - 1);
-  const Targeting targeting = collect_targeting(levels);
+  Targeting targeting = collect_targeting(levels);
   const std::vector<Binding>& ordered = targeting.ordered;
 
   // `with` lines in a nested block add traits to this one instance.
@@ -349,6 +349,8 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
   }
   if (!extra_traits.empty()) {
     graph_.at(id).type = program_.make_trait_extension(graph_.at(id).type, std::move(extra_traits));
+    // The traits bring entries of their own (`visible becomes ... with ...` in a surface feature).
+    targeting = collect_targeting(levels);
   }
   Object& obj = graph_.at(id);
   auto index = std::make_shared<SlotIndex>();

@@ -331,6 +331,25 @@ TEST_F(Mjcf, VisualMaterialKeepsColourRoughnessAndMetallic) {
   mj_deleteModel(m);
 }
 
+// A trait added by a nested block (`with` inside an attribute's block) brings its own entries: BaseColor's
+// `visible becomes ... with ...` once left `base_color_tint` unknown, because the instance's entries were
+// collected before the trait joined its type.
+TEST_F(Mjcf, TraitAddedInANestedBlockBringsItsOwnEntries) {
+  ASSERT_TRUE(
+      load("Scene is Physics3D.System:\n"
+           "    m is Visuals.Materials.Material:\n"
+           "        with Visuals.Materials.SurfaceFeatures.BaseColor\n"
+           "        base_color_tint: {0.0, 1.0, 0.0, 1.0}\n"))
+      << all_diags();
+  mjModel* m = load_mujoco(emit("nested_trait"));
+  ASSERT_NE(m, nullptr);
+  EXPECT_TRUE(sink_.diagnostics().empty()) << all_diags();
+  ASSERT_EQ(m->nmat, 1);
+  EXPECT_EQ(m->mat_rgba[0], 0.0f);
+  EXPECT_EQ(m->mat_rgba[1], 1.0f);
+  mj_deleteModel(m);
+}
+
 // visual_mesh_import (corpus README): the imported OBJ becomes a visual mesh: drawn, never colliding.
 TEST_F(Mjcf, ImportedObjBecomesAVisualMesh) {
   ASSERT_TRUE(load_corpus("visual_mesh_import.openplx")) << all_diags();
