@@ -726,7 +726,7 @@ class Emitter {
     }
     std::string text;
     for (double v : qvel) text += (text.empty() ? "" : " ") + number(v);
-    root.add("keyframe").add("key").set("name", "initial").set("qvel", text);
+    root.add("keyframe").add("key").set("name", name("initial")).set("qvel", text);  // prefixed: scenes merge
   }
 
   // Simulation.DisableCollisionPair. MuJoCo excludes contacts per pair of bodies, so each group becomes the
