@@ -184,9 +184,12 @@ std::optional<UrdfFinding> UrdfDocument::loop_finding() const {
 
 std::string UrdfDocument::lenient_text() {
   bool changed = false;
-  for (const auto& [name, j] : joints_) {
-    auto* limit = const_cast<XMLElement*>(child(j, "limit"));
+  // The DOM itself (not the const index) is edited here.
+  for (XMLElement* j = doc_.FirstChildElement("robot")->FirstChildElement("joint"); j;
+       j = j->NextSiblingElement("joint")) {
+    XMLElement* limit = j->FirstChildElement("limit");
     if (!limit) continue;
+    const std::string name = j->Attribute("name") ? j->Attribute("name") : "";
     std::string missing;
     for (const char* attribute : {"effort", "velocity"}) {
       if (limit->Attribute(attribute)) continue;
