@@ -20,7 +20,9 @@ namespace {
 // connector (trunks, or the first chain link) or to the previous link's top.
 sn::PhysicsView mechanism_view(size_t bodies, bool chain) {
   sn::PhysicsView view;
-  sn::FrameNode root{sn::FrameNode::Kind::System, 0};
+  sn::FrameNode root;
+  root.kind = sn::FrameNode::Kind::System;
+  root.object = 0;
   root.defined = true;
   view.nodes.push_back(root);
   view.root = 0;
@@ -30,7 +32,9 @@ sn::PhysicsView mechanism_view(size_t bodies, bool chain) {
                                                    Eigen::Vector3d::Zero());
   view.connectors.push_back(base);
   for (size_t i = 0; i < bodies; ++i) {
-    sn::FrameNode link{sn::FrameNode::Kind::Body, static_cast<fe::ObjectId>(i + 1)};
+    sn::FrameNode link;
+    link.kind = sn::FrameNode::Kind::Body;
+    link.object = static_cast<fe::ObjectId>(i + 1);
     link.parent = 0;
     view.nodes.push_back(link);
     sn::Connector bottom = base, top = base;
