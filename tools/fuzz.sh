@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer target with clang (ASan+UBSan) and runs it.
-#   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer).
+#   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer, urdf_fuzzer).
 # Crashes land in fuzz-out/TARGET/crashes; add fixed ones to tests/fuzz/regressions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +14,13 @@ corpus_dir=$(sed -n 's/^OPENPLX_CORPUS_DIR:PATH=//p' build-fuzz/CMakeCache.txt)
 out=fuzz-out/$target
 mkdir -p "$out/corpus" "$out/crashes"
 # Seeds: the real files, the reconstructed seed snippets and the saved regressions.
-find "$corpus_dir" tests/seed_snippets tests/fuzz/regressions -name '*.openplx' -exec cp {} "$out/corpus/" \;
-"build-fuzz/tests/fuzz/$target" "$out/corpus" -dict=tests/fuzz/openplx.dict \
+if [ "$target" = urdf_fuzzer ]; then
+  find "$corpus_dir/urdf" tests/fuzz/regressions -name '*.urdf' -exec cp {} "$out/corpus/" \;
+  dict=tests/fuzz/urdf.dict
+else
+  find "$corpus_dir" tests/seed_snippets tests/fuzz/regressions -name '*.openplx' -exec cp {} "$out/corpus/" \;
+  dict=tests/fuzz/openplx.dict
+fi
+"build-fuzz/tests/fuzz/$target" "$out/corpus" -dict="$dict" \
   -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
   -artifact_prefix="$out/crashes/"

@@ -186,7 +186,10 @@ void declare_materials(Context& c, const urdf::ModelInterface& robot, const std:
     }
   }
   for (const auto& [name, material] : used) {
-    const std::string model = model_name + ".material." + name;
+    // Internal names; one that cannot be an identifier is numbered instead.
+    const std::string model =
+        model_name + ".material." +
+        (name.find_first_of("`\r\n") == std::string::npos ? name : std::to_string(c.materials.size()));
     c.materials[name] = model;
     c.w.from(nullptr);
     for (const XMLElement* e = c.doc.robot()->FirstChildElement("material"); e;
@@ -293,6 +296,60 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
   Context c{doc, w, fs::path(path).parent_path(), result.findings, {}};
   std::vector<urdf::JointSharedPtr> joints;
   for (const auto& [name, joint] : robot->joints_) joints.push_back(joint);  // std::map: name order
+  // Names become backtick identifiers: a backtick or a line break cannot be in one.
+  auto unusable = [](const std::string& name) { return name.find_first_of("`\r\n") != std::string::npos; };
+  if (unusable(model_name)) {
+    result.findings.push_back({true,
+                               doc.offset_of(doc.robot()),
+                               "the robot's model name `" + model_name +
+                                   "` (from the file name or the import's alias) cannot be an OpenPLX name",
+                               {}});
+  }
+  for (const auto& [name, link] : robot->links_) {
+    if (unusable(name)) {
+      result.findings.push_back(
+          {true,
+           doc.offset_of(doc.link(name)),
+           "link name contains a backtick or a line break, which an OpenPLX name cannot hold",
+           {}});
+    }
+  }
+  for (const auto& joint : joints) {
+    if (unusable(joint->name)) {
+      result.findings.push_back(
+          {true,
+           doc.offset_of(doc.joint(joint->name)),
+           "joint name contains a backtick or a line break, which an OpenPLX name cannot hold",
+           {}});
+    }
+  }
+  for (const auto& [name, link] : robot->links_) {
+    if (link->inertial && link->inertial->mass < 0) {
+      const XMLElement* mass = UrdfDocument::child(UrdfDocument::child(doc.link(name), "inertial"), "mass");
+      result.findings.push_back(
+          {true, doc.offset_of(mass ? mass : doc.link(name)), "link `" + name + "` has a negative mass", {}});
+    }
+  }
+  for (const auto& joint : joints) {
+    const XMLElement* element = doc.joint(joint->name);
+    if (to_eigen(joint->axis).squaredNorm() < 1e-24 && UrdfDocument::child(element, "axis") &&
+        joint->type != urdf::Joint::FIXED && joint->type != urdf::Joint::FLOATING) {
+      result.findings.push_back({false,
+                                 doc.offset_of(UrdfDocument::child(element, "axis")),
+                                 "joint `" + joint->name + "` has a zero axis; the x axis was used",
+                                 {}});
+    }
+    const bool ranged = joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC;
+    if (ranged && joint->limits && joint->limits->lower > joint->limits->upper) {
+      result.findings.push_back({false,
+                                 doc.offset_of(UrdfDocument::child(element, "limit")),
+                                 "joint `" + joint->name + "` has lower > upper; it was left without a range",
+                                 {}});
+    }
+  }
+  if (std::any_of(result.findings.begin(), result.findings.end(),
+                  [](const UrdfFinding& f) { return f.error; }))
+    return result;
   for (const auto& joint : joints) {
     if (joint->type == urdf::Joint::PLANAR) {  // urdfdom itself rejects unknown types
       result.findings.push_back(

@@ -9,6 +9,7 @@
 
 #include "tests/fuzz/fuzz_evaluate.h"
 #include "tests/fuzz/fuzz_lex_parse.h"
+#include "tests/fuzz/fuzz_urdf.h"
 
 namespace fs = std::filesystem;
 
@@ -20,8 +21,13 @@ TEST(FuzzRegression, SavedInputsRunClean) {
     std::ostringstream text;
     text << in.rdbuf();
     const std::string data = text.str();
-    openplx::fuzz::lex_parse_one(reinterpret_cast<const uint8_t*>(data.data()), data.size());
-    openplx::fuzz::evaluate_one(reinterpret_cast<const uint8_t*>(data.data()), data.size());
+    const auto* bytes = reinterpret_cast<const uint8_t*>(data.data());
+    if (entry.path().extension() == ".urdf") {
+      openplx::fuzz::urdf_one(bytes, data.size());
+    } else {
+      openplx::fuzz::lex_parse_one(bytes, data.size());
+      openplx::fuzz::evaluate_one(bytes, data.size());
+    }
     ++count;
   }
   EXPECT_GT(count, 0u);

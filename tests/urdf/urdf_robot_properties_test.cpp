@@ -215,6 +215,49 @@ TEST_F(UrdfRobotProperties, PlanarJointIsALocatedError) {
       << err;
 }
 
+// Values a URDF can hold but a robot cannot: each is located at its element. A negative mass and a name no
+// OpenPLX identifier can hold are errors; a zero axis and an inverted range are warnings with what was done.
+TEST_F(UrdfRobotProperties, ImpossibleValuesAreLocated) {
+  struct Case {
+    std::string from, to, diagnostic;
+    int exit;
+  };
+  const std::vector<Case> cases = {
+      {"<mass value=\"1\"/>", "<mass value=\"-1\"/>",
+       ":9:39: error: link `arm` has a negative mass [urdf-invalid]", openplx::cli::kExitInputError},
+      {"<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 0\"/>",
+       ":14:45: warning: joint `shoulder` has a zero axis; the x axis was used [urdf-warning]", 0},
+      {"type=\"continuous\"", "type=\"revolute\"", "", 0},  // effort and velocity only: no range, no warning
+      {"<link name=\"arm\">", "<link name=\"a`rm\">", "", openplx::cli::kExitInputError},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    std::string urdf = arm_urdf();
+    urdf.replace(urdf.find(c.from), c.from.size(), c.to);
+    if (c.to.find("a`rm") != std::string::npos) urdf.replace(urdf.find("link=\"arm\""), 10, "link=\"a`rm\"");
+    const fs::path path = robot("", urdf);
+    std::string err;
+    EXPECT_EQ(cli({path.string(), "-o", (dir_ / "robot.xml").string()}, &err), c.exit) << err;
+    if (!c.diagnostic.empty())
+      EXPECT_NE(err.find((dir_ / "arm.urdf").string() + c.diagnostic), std::string::npos) << err;
+    if (c.to.find("a`rm") != std::string::npos) {
+      EXPECT_NE(err.find(":8:3: error: link name contains a backtick or a line break"), std::string::npos)
+          << err;
+    }
+    if (c.diagnostic.empty() && c.exit == 0) EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+  }
+  std::string urdf = arm_urdf();
+  urdf.replace(urdf.find("type=\"continuous\""), 17, "type=\"revolute\"");
+  urdf.replace(urdf.find("<limit effort"), 13, "<limit lower=\"1\" upper=\"-1\" effort");
+  std::string err;
+  EXPECT_EQ(cli({robot("", urdf).string(), "-o", (dir_ / "robot.xml").string()}, &err), 0) << err;
+  EXPECT_NE(
+      err.find(
+          ":15:5: warning: joint `shoulder` has lower > upper; it was left without a range [urdf-warning]"),
+      std::string::npos)
+      << err;
+}
+
 // A floating joint leaves its child free, starting where the joint's origin puts it.
 TEST_F(UrdfRobotProperties, FloatingChildIsFreeAtItsOrigin) {
   std::string urdf = arm_urdf();
