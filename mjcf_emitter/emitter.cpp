@@ -47,7 +47,10 @@ class Emitter {
         .set("balanceinertia", "false")
         .set("fusestatic", "false")
         .set("discardvisual", "false");
-    root.add("option").set("timestep", kTimestep).set("gravity", gravity()).set("integrator", "Euler");
+    root.add("option")
+        .set("timestep", options_.timestep)
+        .set("gravity", gravity())
+        .set("integrator", "Euler");
     for (const sn::Unsupported& u : view_.unsupported) {
       warn(u.where, "`" + u.path + "` is a " + u.type +
                         ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
@@ -282,7 +285,7 @@ class Emitter {
         const fe::ObjectId elastic = object(flex, axis);
         const double k = elastic == fe::kNoObject ? 0 : real(elastic, "stiffness");
         if (!(k > 0)) continue;
-        double b = 2 * kTimestep * k;
+        double b = 2 * options_.timestep * k;
         if (const fe::ObjectId d = dissipation == fe::kNoObject ? fe::kNoObject : object(dissipation, axis);
             d != fe::kNoObject) {
           if (const fe::Value* v = ev_.value(d, "damping_constant"); v && v->is_number()) b = v->as_real();
@@ -995,13 +998,13 @@ class Emitter {
   void soften_equalities(Element& root) {
     if (soft_equalities_.empty() || sink_.has_errors()) return;
     const SoftEqualityResult r =
-        apply_soft_equalities(root, soft_equalities_, options_.output_dir, kTimestep);
+        apply_soft_equalities(root, soft_equalities_, options_.output_dir, options_.timestep);
     if (!r.error.empty()) {
       warn({}, "flexible loop closures kept MuJoCo's default softness: the draft model did not load (" +
                    r.error + ")");
     }
     for (const std::string& e : r.unstable) {
-      warn({}, "equality " + e + " is stiffer than explicit integration at " + number(kTimestep) +
+      warn({}, "equality " + e + " is stiffer than explicit integration at " + number(options_.timestep) +
                    " s resolves (h sqrt(k/m) > 1); it may oscillate");
     }
   }
@@ -1126,7 +1129,7 @@ class Emitter {
   // the 3-D motors' by the inertia the whole drivetrain presents at that shaft.
   void emit_shaft_motor(Element& actuators, const sn::Interaction1D& i) {
     const double gain = real(i.object, "gain", 1e8);
-    const double stable = 0.5 * drivetrain_inertia(i.shaft) / kTimestep;
+    const double stable = 0.5 * drivetrain_inertia(i.shaft) / options_.timestep;
     if (gain > stable) note_capped_gain(i, gain, stable);
     Element& a = actuators.add("velocity");
     a.set("name", name(i.path)).set("joint", shaft_joints_[i.shaft]).set("kv", std::min(gain, stable));
@@ -1181,7 +1184,7 @@ class Emitter {
     if (d == fe::kNoObject) return 0.0;
     if (const fe::Value* b = ev_.value(d, "damping_constant"); b && b->is_number()) return b->as_real();
     if (const fe::Value* t = ev_.value(d, "relaxation_time"); t && t->is_number()) return t->as_real() * k;
-    return 2 * kTimestep * k;
+    return 2 * options_.timestep * k;
   }
 
   // MuJoCo's velocity actuator pushes explicitly: stable under Euler only while kv h / I_eff < 2. Half of the
@@ -1190,7 +1193,7 @@ class Emitter {
     const double inertia = effective_inertia(joint);
     if (!(inertia > 0)) return gain;
     // The limit holds for the sum of the gains on one joint: share it among its velocity motors.
-    const double stable = 0.5 * inertia / kTimestep / std::max(1, velocity_motors_[&joint]);
+    const double stable = 0.5 * inertia / options_.timestep / std::max(1, velocity_motors_[&joint]);
     if (gain > stable) {
       note_capped_gain(motor, gain, stable);
       return stable;
@@ -1567,8 +1570,6 @@ class Emitter {
                               }),
                kids.end());
   }
-
-  static constexpr double kTimestep = 0.002;
 
   struct Adjacent {
     int mate;

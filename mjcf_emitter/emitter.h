@@ -20,9 +20,10 @@
 namespace openplx::mjcf {
 
 struct EmitOptions {
-  std::string model_name;  // <mujoco model="...">
-  std::string prefix;      // prepended to every MuJoCo name (--prefix)
-  std::string output_dir;  // mesh files are written relative to it; empty: absolute paths
+  std::string model_name;   // <mujoco model="...">
+  std::string prefix;       // prepended to every MuJoCo name (--prefix)
+  std::string output_dir;   // mesh files are written relative to it; empty: absolute paths
+  double timestep = 0.002;  // <option timestep> (--timestep): OpenPLX has no time-step setting
 };
 
 struct Emitted {

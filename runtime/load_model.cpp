@@ -52,7 +52,7 @@ mjModel* load_xml(const std::string& xml, std::string& error) {
 }  // namespace
 
 LoadedModel load_model(const std::string& path, const std::string& model,
-                       const std::vector<std::string>& bundle_paths) {
+                       const std::vector<std::string>& bundle_paths, double timestep) {
   fe::SourceManager sources;
   fe::DiagnosticSink sink;
   fe::LoadRequest request;
@@ -68,6 +68,7 @@ LoadedModel load_model(const std::string& path, const std::string& model,
     snap::SnapResult assembled = snap::run_snap(view, sink);
     mjcf::EmitOptions options;
     options.model_name = evaluation.evaluator->root_name();
+    options.timestep = timestep;
     emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink);
     loaded.root_name = options.model_name;
   }

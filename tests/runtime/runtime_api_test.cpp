@@ -103,6 +103,20 @@ TEST(RuntimeApi, LoadErrorsCarryTheirLocation) {
                rt::LoadError);
 }
 
+// LoadOptions::timestep is MuJoCo's step (OpenPLX has none); a step that is not a positive number is refused.
+TEST(RuntimeApi, TimestepComesFromTheLoadOptions) {
+  const std::string path = std::string(OPENPLX_SAMPLES_DIR) + "/pendulum.openplx";
+  rt::LoadOptions options;
+  options.timestep = 0.001;
+  rt::Simulation sim = rt::Simulation::load(path, options);
+  EXPECT_EQ(sim.model()->opt.timestep, 0.001);
+  sim.step();
+  EXPECT_DOUBLE_EQ(sim.time(), 0.001);
+  EXPECT_EQ(rt::Simulation::load(path).model()->opt.timestep, 0.002);
+  options.timestep = 0;
+  EXPECT_THROW(rt::Simulation::load(path, options), rt::LoadError);
+}
+
 // A kinematic cart (is_dynamic: false) follows its velocity input exactly, and what hangs from it comes
 // along; a free body takes its velocity input as its initial velocity and then falls under gravity.
 TEST(RuntimeApi, KinematicAndFreeBodiesTakeVelocityInputs) {

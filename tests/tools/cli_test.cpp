@@ -207,6 +207,35 @@ TEST_F(Cli, StrictTurnsWarningsIntoErrors) {
   EXPECT_NE(err_.str().find(":1:8: error: missing `:`"), std::string::npos) << err_.str();
 }
 
+// OpenPLX has no time-step setting: --timestep sets MuJoCo's, and the emitter's stability caps follow it (a
+// velocity motor's kv is capped at 0.5 I / h, so halving h doubles the cap).
+TEST_F(Cli, TimestepOptionSetsMuJoCosStep) {
+  const std::string file =
+      write("motor.openplx",
+            "Scene is Physics3D.System:\n"
+            "    anchor is Physics3D.Interactions.MateConnector:\n"
+            "        main_axis: {0, 0, 1}\n"
+            "    wheel is Physics3D.Bodies.RigidBody:\n"
+            "        inertia.mass: 1\n"
+            "        inertia.tensor: Physics3D.Bodies.Inertia.symmetric_tensor({0.01, 0.01, 0.01}, 0, 0, 0)\n"
+            "        axle is Physics3D.Interactions.MateConnector:\n"
+            "            main_axis: {0, 0, 1}\n"
+            "    hinge is Physics3D.Interactions.Hinge:\n"
+            "        connectors: [anchor, wheel.axle]\n"
+            "    motor is Physics3D.Interactions.RotationalVelocityMotor:\n"
+            "        connectors: [anchor, wheel.axle]\n");
+  EXPECT_EQ(run({file, "-o", "-", "--timestep", "0.001"}), 0) << err_.str();
+  EXPECT_NE(out_.str().find("<option timestep=\"0.001\""), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("kv=\"5\""), std::string::npos) << out_.str();  // 0.5 * 0.01 / 0.001
+  EXPECT_EQ(run({file, "-o", "-"}), 0) << err_.str();
+  EXPECT_NE(out_.str().find("<option timestep=\"0.002\""), std::string::npos);
+  EXPECT_NE(out_.str().find("kv=\"2.5\""), std::string::npos) << out_.str();
+  for (const char* bad : {"0", "-1", "fast", "1e999", ""}) {
+    EXPECT_EQ(run({file, "--timestep", bad}), 2) << bad;
+    EXPECT_NE(err_.str().find("--timestep takes a positive number of seconds"), std::string::npos) << bad;
+  }
+}
+
 TEST_F(Cli, OutputToStdoutWithDash) {
   std::string file = write("scene.openplx", kPendulum);
   EXPECT_EQ(run({file, "--dump=ast", "-o", "-"}), 0);

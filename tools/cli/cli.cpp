@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -117,6 +119,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   mjcf::EmitOptions emit_options;
   emit_options.model_name = evaluation.evaluator->root_name();
   emit_options.prefix = options.prefix;
+  emit_options.timestep = options.timestep;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, emit_options, sink);
@@ -138,7 +141,7 @@ std::string manifest_path(const std::string& output) {
 
 std::string usage() {
   return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--prefix P] "
-         "[--dump=tokens|ast|values|snap]\n"
+         "[--timestep S] [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
          "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the "
@@ -151,6 +154,7 @@ std::string usage() {
          "  --strict       treat warnings as errors\n"
          "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose\n"
          "  --prefix P     prepend P to every MuJoCo name\n"
+         "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
          "  --dump=KIND    tokens | ast | values | snap (world frames after assembly)\n"
          "  --help         show this text\n"
          "  --version      show the version\n"
@@ -196,6 +200,16 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     if (!take_value(args, i, "--prefix", "", value, error, matched)) return std::nullopt;
     if (matched) {
       options.prefix = value;
+      continue;
+    }
+    if (!take_value(args, i, "--timestep", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      char* end = nullptr;
+      options.timestep = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !(options.timestep > 0) || !std::isfinite(options.timestep)) {
+        error = "--timestep takes a positive number of seconds, not '" + value + "'";
+        return std::nullopt;
+      }
       continue;
     }
     if (!take_value(args, i, "--model", "", value, error, matched)) return std::nullopt;

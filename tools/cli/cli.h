@@ -21,8 +21,9 @@ struct CliOptions {
   std::optional<std::string> output;  // "-" is stdout
   std::vector<std::string> bundle_dirs;
   bool strict = false;
-  bool check = false;  // --check: load the MJCF in MuJoCo and compare with SNAP
-  std::string prefix;  // --prefix P: prepended to every MuJoCo name
+  bool check = false;       // --check: load the MJCF in MuJoCo and compare with SNAP
+  std::string prefix;       // --prefix P: prepended to every MuJoCo name
+  double timestep = 0.002;  // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;

@@ -41,6 +41,7 @@ class SignalError : public std::invalid_argument {
 struct LoadOptions {
   std::string model;                      // the root model; empty: the file's last model
   std::vector<std::string> bundle_paths;  // extra bundle folders (like openplx2mjcf -B)
+  double timestep = 0.002;                // MuJoCo's time step, s (like openplx2mjcf --timestep)
 };
 
 enum class ValueType { Real, Bool, Int, Vec2, Vec3 };
