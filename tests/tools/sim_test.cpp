@@ -57,6 +57,20 @@ TEST(Sim, CsvHasOneRowPerStep) {
   EXPECT_EQ(rows, 6u);  // t = 0 and 5 steps of 2 ms
 }
 
+// --timestep is MuJoCo's step: 0.01 s at 1 ms is ten steps, eleven rows with t = 0.
+TEST(Sim, TimestepSetsTheStep) {
+  const fs::path csv = fs::temp_directory_path() / "openplx_sim_timestep_test.csv";
+  const SimRun run = sim({kSignalTest, "--time", "0.01", "--timestep", "0.001", "--print", "angularVelocity",
+                          "--csv", csv.string()});
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::ifstream in(csv);
+  std::string line;
+  size_t rows = 0;
+  while (std::getline(in, line)) ++rows;
+  EXPECT_EQ(rows, 12u);  // the header, t = 0 and 10 steps
+  EXPECT_EQ(sim({kSignalTest, "--timestep", "0"}).status, 2);
+}
+
 TEST(Sim, ListShowsTypesUnitsAndMuJoCoElements) {
   const SimRun run = sim({kSignalTest, "--list"});
   ASSERT_EQ(run.status, 0) << run.err;

@@ -84,6 +84,7 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
   rt::LoadOptions load;
   load.model = options.model;
   load.bundle_paths = options.bundle_dirs;
+  load.timestep = options.timestep;
   rt::Simulation sim = rt::Simulation::load(options.input, load);
   for (const std::string& w : sim.warnings()) err << w;
   if (options.list) {

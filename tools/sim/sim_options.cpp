@@ -55,10 +55,12 @@ std::optional<SignalValue> parse_signal_value(const std::string& text) {
 }
 
 std::string sim_usage() {
-  return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--set NAME=VALUE]...\n"
+  return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--timestep S] [--set "
+         "NAME=VALUE]...\n"
          "                   [--at T NAME=VALUE]... [--print NAME]... [--csv FILE] [--list]\n"
          "Runs an OpenPLX model headless in MuJoCo. VALUE is a number, true/false, {a, b} or {x, y, z}.\n"
          "  --time T         simulated seconds (default 1)\n"
+         "  --timestep S     MuJoCo's time step in seconds (default 0.002)\n"
          "  --set NAME=V     set an input before the first step\n"
          "  --at T NAME=V    set an input once the simulated time reaches T\n"
          "  --print NAME     print an output's final value as `NAME = value`\n"
@@ -96,6 +98,14 @@ std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args
         return std::nullopt;
       }
       options.time = *t;
+    } else if (arg == "--timestep") {
+      if (!value()) return std::nullopt;
+      std::optional<double> h = parse_number(args[++i]);
+      if (!h || !(*h > 0)) {
+        error = "--timestep needs a positive number of seconds, got '" + args[i] + "'";
+        return std::nullopt;
+      }
+      options.timestep = *h;
     } else if (arg == "--set") {
       if (!value()) return std::nullopt;
       std::optional<Assignment> a = parse_assignment(args[++i], error);

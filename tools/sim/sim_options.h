@@ -26,6 +26,7 @@ struct SimOptions {
   std::string model;
   std::vector<std::string> bundle_dirs;
   double time = 1.0;
+  double timestep = 0.002;
   std::vector<Assignment> assignments;  // --set then --at, in the order given
   std::vector<std::string> prints;
   std::string csv;
