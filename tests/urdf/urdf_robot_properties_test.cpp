@@ -238,13 +238,16 @@ TEST_F(UrdfRobotProperties, ImpossibleValuesAreLocated) {
     const fs::path path = robot("", urdf);
     std::string err;
     EXPECT_EQ(cli({path.string(), "-o", (dir_ / "robot.xml").string()}, &err), c.exit) << err;
-    if (!c.diagnostic.empty())
+    if (!c.diagnostic.empty()) {
       EXPECT_NE(err.find((dir_ / "arm.urdf").string() + c.diagnostic), std::string::npos) << err;
+    }
     if (c.to.find("a`rm") != std::string::npos) {
       EXPECT_NE(err.find(":8:3: error: link name contains a backtick or a line break"), std::string::npos)
           << err;
     }
-    if (c.diagnostic.empty() && c.exit == 0) EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+    if (c.diagnostic.empty() && c.exit == 0) {
+      EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+    }
   }
   std::string urdf = arm_urdf();
   urdf.replace(urdf.find("type=\"continuous\""), 17, "type=\"revolute\"");
