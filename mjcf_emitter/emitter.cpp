@@ -737,18 +737,17 @@ class Emitter {
   // colliding geometries is widened to the whole body, with a warning.
   void emit_collision_filters(Element& root) {
     if (view_.collision_filters.empty()) return;
-    Element* contact = nullptr;
-    for (const std::unique_ptr<Element>& e : root.children()) {
-      if (e->name() == "contact") contact = e.get();
-    }
+    Element* contact = root.child("contact");
     std::set<std::pair<std::string, std::string>> excluded;
     for (const std::unique_ptr<Element>& e : contact->children()) {
       if (e->name() == "exclude") excluded.insert({*e->get("body1"), *e->get("body2")});
     }
+    std::unordered_map<fe::ObjectId, int> node;  // systems and bodies alike
+    for (size_t n = 0; n < view_.nodes.size(); ++n) node[view_.nodes[n].object] = static_cast<int>(n);
     for (const sn::CollisionFilter& f : view_.collision_filters) {
       std::vector<std::string> widened;
-      const std::set<std::string> first = group_bodies(f.group1, widened);
-      const std::set<std::string> second = group_bodies(f.group2, widened);
+      const std::set<std::string> first = group_bodies(f.group1, node, widened);
+      const std::set<std::string> second = group_bodies(f.group2, node, widened);
       for (const std::string& body : widened) {
         warn(f.where, "`" + f.path + "`: MuJoCo excludes contacts between whole bodies, so all of `" + body +
                           "`'s geometries were excluded, not only those its group names");
@@ -765,11 +764,10 @@ class Emitter {
   }
 
   // The MuJoCo bodies holding the shapes of a Simulation.CollisionGroup.
-  std::set<std::string> group_bodies(fe::ObjectId group, std::vector<std::string>& widened) {
+  std::set<std::string> group_bodies(fe::ObjectId group, const std::unordered_map<fe::ObjectId, int>& node,
+                                     std::vector<std::string>& widened) {
     std::set<std::string> bodies;
     if (group == fe::kNoObject) return bodies;
-    std::unordered_map<fe::ObjectId, int> node;
-    for (size_t n = 0; n < view_.nodes.size(); ++n) node[view_.nodes[n].object] = static_cast<int>(n);
     auto listed = [&](const char* attribute) {
       std::vector<fe::ObjectId> out;
       const fe::Value* v = ev_.value(group, attribute);
@@ -819,10 +817,7 @@ class Emitter {
 
   // One <pair> per pair of colliding geometries whose materials a SurfaceContact model names.
   void emit_contact_pairs(Element& root) {
-    Element* contact = nullptr;
-    for (const std::unique_ptr<Element>& e : root.children()) {
-      if (e->name() == "contact") contact = e.get();
-    }
+    Element* contact = root.child("contact");
     for (const sn::ContactModel& cm : view_.contact_models) {
       const fe::Value* enabled = ev_.value(cm.object, "enabled");
       if (enabled && enabled->kind == fe::Value::Kind::Bool && !enabled->bool_value) continue;
@@ -1020,10 +1015,7 @@ class Emitter {
   // Joints that follow another (URDF mimic): a joint equality, follower = offset + multiplier * leader
   // (MuJoCo measures both from the initial configuration).
   void emit_joint_couplings(Element& root) {
-    Element* equality = nullptr;
-    for (const std::unique_ptr<Element>& e : root.children()) {
-      if (e->name() == "equality") equality = e.get();
-    }
+    Element* equality = root.child("equality");
     for (const sn::JointCoupling& c : view_.joint_couplings) {
       auto joint = [&](int mate) -> Element* {
         if (mate < 0 || !tree_mates_.count(mate)) return nullptr;
@@ -1059,10 +1051,7 @@ class Emitter {
           .set("diaginertia", Eigen::Vector3d::Constant(inertia));
       shaft_joints_.push_back(name(shaft.path));
     }
-    Element* equality = nullptr;
-    for (const std::unique_ptr<Element>& e : root.children()) {
-      if (e->name() == "equality") equality = e.get();
-    }
+    Element* equality = root.child("equality");
     Element& tendons = root.add("tendon");
     for (const sn::DriveCoupling& c : view_.couplings) {
       const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });

@@ -38,6 +38,13 @@ std::string number(double value) {
   return std::string(buffer, end);
 }
 
+Element* Element::child(std::string_view name) {
+  for (const std::unique_ptr<Element>& e : children_) {
+    if (e->name() == name) return e.get();
+  }
+  return nullptr;
+}
+
 Element& Element::set(std::string_view key, std::string value) {
   for (auto& [k, v] : attributes_) {
     if (k == key) {

@@ -32,6 +32,8 @@ class Element {
   // and bodies while adding more elements.
   const std::vector<std::unique_ptr<Element>>& children() const { return children_; }
   std::vector<std::unique_ptr<Element>>& children() { return children_; }
+  // The first child element named `name` (MJCF sections such as <contact> appear once), or null.
+  Element* child(std::string_view name);
 
   // The whole tree as XML text (iterative, so deep trees cannot exhaust the stack).
   std::string to_string() const;

@@ -1,5 +1,7 @@
 #include "snap/physics_view.h"
 
+#include "frontend/urdf/package_uri.h"
+
 #include <filesystem>
 #include <map>
 #include <unordered_map>
@@ -350,14 +352,20 @@ class ViewBuilder {
   // P.
   void resolve_packages() {
     for (Geometry& g : view_.geometries) {
-      if (g.package_uri.rfind("package://", 0) != 0) continue;
-      const std::string rest = g.package_uri.substr(10);
-      const size_t slash = rest.find('/');
-      auto it = packages_.find(rest.substr(0, slash));
+      const std::optional<fe::PackageUri> uri = fe::parse_package_uri(g.package_uri);
+      auto it = uri ? packages_.find(uri->package) : packages_.end();
       if (it == packages_.end()) continue;
-      const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
-      g.file = (std::filesystem::path(it->second) / inside).lexically_normal().generic_string();
+      g.file = (std::filesystem::path(it->second) / uri->inside).lexically_normal().generic_string();
     }
+  }
+
+  // The index of the mate that is `object`, or -1 (the map is built once, after the walk found every mate).
+  int mate_index(fe::ObjectId object) {
+    if (mate_of_.empty()) {
+      for (size_t m = 0; m < view_.mates.size(); ++m) mate_of_[view_.mates[m].object] = static_cast<int>(m);
+    }
+    auto it = mate_of_.find(object);
+    return it == mate_of_.end() ? -1 : it->second;
   }
 
   void resolve_drivetrain() {
@@ -388,27 +396,16 @@ class ViewBuilder {
           break;
         case DriveCoupling::Kind::Actuator: {
           c.shafts.push_back(shaft(object(c.object, "connector_1d")));
-          const fe::ObjectId mate = object(c.object, "mate_3d");
-          for (size_t m = 0; m < view_.mates.size(); ++m) {
-            if (view_.mates[m].object == mate) c.mate = static_cast<int>(m);
-          }
+          c.mate = mate_index(object(c.object, "mate_3d"));
           break;
         }
       }
     }
     for (JointCoupling& c : view_.joint_couplings) {
-      const fe::ObjectId follower = object(c.object, "follower"), leader = object(c.object, "leader");
-      for (size_t m = 0; m < view_.mates.size(); ++m) {
-        if (view_.mates[m].object == follower) c.follower = static_cast<int>(m);
-        if (view_.mates[m].object == leader) c.leader = static_cast<int>(m);
-      }
+      c.follower = mate_index(object(c.object, "follower"));
+      c.leader = mate_index(object(c.object, "leader"));
     }
-    for (JointProperties& p : view_.joint_properties) {
-      const fe::ObjectId mate = object(p.object, "mate");
-      for (size_t m = 0; m < view_.mates.size(); ++m) {
-        if (view_.mates[m].object == mate) p.mate = static_cast<int>(m);
-      }
-    }
+    for (JointProperties& p : view_.joint_properties) p.mate = mate_index(object(p.object, "mate"));
     for (Interaction1D& i : view_.interactions) {
       if (!is(ev_.graph().at(i.object), motor1d_)) continue;
       i.kind = Interaction1D::Kind::RotationalVelocityMotor;
@@ -653,7 +650,9 @@ class ViewBuilder {
   fe::ModelInfo* joint_properties_ = nullptr;
   fe::ModelInfo* package_path_ = nullptr;
   fe::ModelInfo* collision_filter_ = nullptr;
-  std::map<std::string, std::string> packages_;  // Urdf.PackagePath: package name -> folder
+  std::map<std::string, std::string> packages_;
+  std::unordered_map<fe::ObjectId, int>
+      mate_of_;  // see mate_index  // Urdf.PackagePath: package name -> folder
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;

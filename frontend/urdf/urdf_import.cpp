@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "frontend/urdf/package_uri.h"
 #include "frontend/urdf/physical_inertia.h"
 
 namespace openplx::frontend {
@@ -36,6 +37,11 @@ Eigen::Vector3d to_eigen(const urdf::Vector3& v) {
 }
 Eigen::Quaterniond to_eigen(const urdf::Rotation& r) {
   return Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized();
+}
+
+// Whether a URDF name fits in a backtick identifier (which cannot hold a backtick or a line break).
+bool identifier_safe(const std::string& name) {
+  return name.find_first_of("`\r\n") == std::string::npos;
 }
 
 // An identifier for any URDF name.
@@ -97,11 +103,8 @@ class Writer {
 std::string mesh_path(const std::string& filename, const fs::path& urdf_dir) {
   std::string name = filename;
   if (name.rfind("file://", 0) == 0) name = name.substr(7);
-  if (name.rfind("package://", 0) == 0) {
-    const std::string rest = name.substr(10);
-    const size_t slash = rest.find('/');
-    const std::string package = rest.substr(0, slash),
-                      inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
+  if (const std::optional<PackageUri> uri = parse_package_uri(name)) {
+    const std::string &package = uri->package, &inside = uri->inside;
     for (fs::path dir = urdf_dir; !dir.empty(); dir = dir.parent_path()) {
       if (dir.filename() == package) return (dir / inside).lexically_normal().generic_string();
       if (fs::is_directory(dir / package))
@@ -188,8 +191,7 @@ void declare_materials(Context& c, const urdf::ModelInterface& robot, const std:
   for (const auto& [name, material] : used) {
     // Internal names; one that cannot be an identifier is numbered instead.
     const std::string model =
-        model_name + ".material." +
-        (name.find_first_of("`\r\n") == std::string::npos ? name : std::to_string(c.materials.size()));
+        model_name + ".material." + (identifier_safe(name) ? name : std::to_string(c.materials.size()));
     c.materials[name] = model;
     c.w.from(nullptr);
     for (const XMLElement* e = c.doc.robot()->FirstChildElement("material"); e;
@@ -297,8 +299,7 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
   std::vector<urdf::JointSharedPtr> joints;
   for (const auto& [name, joint] : robot->joints_) joints.push_back(joint);  // std::map: name order
   // Names become backtick identifiers: a backtick or a line break cannot be in one.
-  auto unusable = [](const std::string& name) { return name.find_first_of("`\r\n") != std::string::npos; };
-  if (unusable(model_name)) {
+  if (!identifier_safe(model_name)) {
     result.findings.push_back({true,
                                doc.offset_of(doc.robot()),
                                "the robot's model name `" + model_name +
@@ -306,7 +307,7 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
                                {}});
   }
   for (const auto& [name, link] : robot->links_) {
-    if (unusable(name)) {
+    if (!identifier_safe(name)) {
       result.findings.push_back(
           {true,
            doc.offset_of(doc.link(name)),
@@ -315,7 +316,7 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     }
   }
   for (const auto& joint : joints) {
-    if (unusable(joint->name)) {
+    if (!identifier_safe(joint->name)) {
       result.findings.push_back(
           {true,
            doc.offset_of(doc.joint(joint->name)),
@@ -406,7 +407,7 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     // a body attribute: `collision_<name>`, or `collision_<index>` when unnamed or named twice.
     std::set<std::string> taken;
     auto geometry_name = [&](const char* kind, const std::string& urdf_name, size_t k) {
-      const bool usable = !urdf_name.empty() && urdf_name.find_first_of("`\r\n") == std::string::npos;
+      const bool usable = !urdf_name.empty() && identifier_safe(urdf_name);
       std::string name = std::string(kind) + "_" + (usable ? urdf_name : std::to_string(k));
       if (!taken.insert(name).second) {
         name = std::string(kind) + "_" + std::to_string(k);
