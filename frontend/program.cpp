@@ -217,7 +217,7 @@ void Program::process_imports(DocumentInfo* doc) {
     if (extension == ".urdf") {
       urdf = read_urdf(path, alias, decl.range);
       if (!urdf) continue;
-      source = urdf->text;
+      source = std::move(urdf->text);
       // `import @"robot.urdf"` also names the robot after <robot name>, as OpenPLX documents it.
       if (!decl.alias && !urdf->robot_name.empty()) names.push_back(urdf->robot_name);
     } else {
