@@ -11,7 +11,7 @@
 #include "bench/model_generator.h"
 #include "frontend/pipeline.h"
 #include "mjcf_emitter/emitter.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 
 namespace fe = openplx::frontend;
@@ -39,12 +39,11 @@ void BM_Openplx2Mjcf(benchmark::State& state) {
     fe::DiagnosticSink sink;
     fe::Evaluation evaluation =
         fe::evaluate_file({input.string(), std::nullopt, {}, std::nullopt}, sources, sink);
-    sn::PhysicsView view = sn::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
-    sn::SnapResult assembled = sn::run_snap(view, sink);
+    sn::ResolvedSystem view = sn::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+    sn::run_snap(view, sink);
     openplx::mjcf::EmitOptions options;
     options.model_name = "Scene";
-    openplx::mjcf::Emitted emitted =
-        openplx::mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink);
+    openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(view, options, sink);
     std::ofstream(xml_file(bodies)) << emitted.document.to_string();
     if (sink.has_errors()) state.SkipWithError("generated model has errors");
   }

@@ -8,7 +8,7 @@
 
 #include "bench/model_generator.h"
 #include "frontend/pipeline.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 
 namespace fe = openplx::frontend;
@@ -18,8 +18,8 @@ namespace {
 
 // The view generate_mechanism() would give: links with connectors at 0 and 1 m, hinged to a base
 // connector (trunks, or the first chain link) or to the previous link's top.
-sn::PhysicsView mechanism_view(size_t bodies, bool chain) {
-  sn::PhysicsView view;
+sn::ResolvedSystem mechanism_view(size_t bodies, bool chain) {
+  sn::ResolvedSystem view;
   sn::FrameNode root;
   root.kind = sn::FrameNode::Kind::System;
   root.object = 0;
@@ -60,7 +60,7 @@ void BM_Snap(benchmark::State& state) {
   const auto bodies = static_cast<size_t>(state.range(0));
   for (auto _ : state) {
     state.PauseTiming();
-    sn::PhysicsView view = mechanism_view(bodies, state.range(1) != 0);
+    sn::ResolvedSystem view = mechanism_view(bodies, state.range(1) != 0);
     fe::DiagnosticSink sink;
     state.ResumeTiming();
     sn::SnapResult result = sn::run_snap(view, sink);
@@ -78,7 +78,7 @@ void BM_EvaluateAndSnap(benchmark::State& state) {
     fe::SourceManager sources;
     fe::DiagnosticSink sink;
     fe::Evaluation evaluation = fe::evaluate_file({path, std::nullopt, {}, std::nullopt}, sources, sink);
-    sn::PhysicsView view = sn::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
+    sn::ResolvedSystem view = sn::resolve_system(*evaluation.evaluator, evaluation.root, sink);
     sn::SnapResult result = sn::run_snap(view, sink);
     if (sink.has_errors()) state.SkipWithError("generated model has errors");
     benchmark::DoNotOptimize(result.node_world.data());

@@ -8,7 +8,7 @@
 
 namespace openplx::mjcf {
 
-CheckResult check_mjcf(const std::string& xml_path, const snap::PhysicsView& view,
+CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& view,
                        const snap::SnapResult& snap, const std::string& prefix, const std::string& root_name,
                        double tolerance) {
   CheckResult result;

@@ -12,7 +12,6 @@
 #include <string>
 
 #include "frontend/diagnostics.h"
-#include "frontend/evaluator.h"
 #include "mjcf_emitter/signal_binding.h"
 #include "mjcf_emitter/xml.h"
 #include "snap/snap.h"
@@ -35,7 +34,8 @@ struct Emitted {
 // MuJoCo 2.2.2's XML reader stops near 100 nested elements; deeper body chains are an error here.
 inline constexpr int kMaxBodyDepth = 90;
 
-Emitted emit_mjcf(const snap::PhysicsView& view, const snap::SnapResult& snap, frontend::Evaluator& evaluator,
-                  const EmitOptions& options, frontend::DiagnosticSink& sink);
+// `system` must have been through SNAP (run_snap fills its assembly).
+Emitted emit_mjcf(const snap::ResolvedSystem& system, const EmitOptions& options,
+                  frontend::DiagnosticSink& sink);
 
 }  // namespace openplx::mjcf

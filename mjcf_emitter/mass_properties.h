@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "snap/physics_view.h"
+#include "snap/resolved_system.h"
 
 namespace openplx::mjcf {
 

@@ -11,7 +11,7 @@
 #include "frontend/pipeline.h"
 #include "mjcf_emitter/emitter.h"
 #include "openplx/runtime/simulation.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 
 namespace openplx::runtime {
@@ -64,12 +64,12 @@ LoadedModel load_model(const std::string& path, const std::string& model,
   LoadedModel loaded;
   mjcf::Emitted emitted;
   if (evaluation.root != fe::kNoObject && !sink.has_errors()) {
-    snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
-    snap::SnapResult assembled = snap::run_snap(view, sink);
+    snap::ResolvedSystem view = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+    snap::run_snap(view, sink);
     mjcf::EmitOptions options;
     options.model_name = evaluation.evaluator->root_name();
     options.timestep = timestep;
-    emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink);
+    emitted = mjcf::emit_mjcf(view, options, sink);
     loaded.root_name = options.model_name;
   }
   for (const fe::Diagnostic& d : sink.diagnostics()) {

@@ -26,7 +26,7 @@ double axis_angle(const Eigen::Quaterniond& q, const Eigen::Vector3d& axis) {
 
 class Snapper {
  public:
-  Snapper(PhysicsView& view, fe::DiagnosticSink& sink)
+  Snapper(ResolvedSystem& view, fe::DiagnosticSink& sink)
       : view_(view),
         sink_(sink),
         fixed_(view.nodes.size()),
@@ -216,7 +216,7 @@ class Snapper {
     }
   }
 
-  PhysicsView& view_;
+  ResolvedSystem& view_;
   fe::DiagnosticSink& sink_;
   std::vector<bool> fixed_;
   std::vector<int> placed_by_;
@@ -259,8 +259,9 @@ Residual mate_residual(const Mate& mate, const Transform& frame0, const Transfor
   return r;
 }
 
-SnapResult run_snap(PhysicsView& view, frontend::DiagnosticSink& sink) {
-  return Snapper(view, sink).run();
+const SnapResult& run_snap(ResolvedSystem& system, frontend::DiagnosticSink& sink) {
+  system.assembly = Snapper(system, sink).run();
+  return system.assembly;
 }
 
 }  // namespace openplx::snap

@@ -16,20 +16,14 @@
 #include <vector>
 
 #include "frontend/diagnostics.h"
-#include "snap/physics_view.h"
+#include "snap/resolved_system.h"
 
 namespace openplx::snap {
 
-struct SnapResult {
-  std::vector<Transform> node_world;       // per node
-  std::vector<Transform> connector_world;  // per connector
-  std::vector<int> placed_by;              // per node: the mate that placed it, -1 if none
-  std::vector<bool> forced;                // per node: forced to the identity
-};
-
-// Solves `view` in place (undefined nodes get their local transforms) and returns the world frames.
-// Over-determined or inconsistent mates are warnings at the mate's line with the residual.
-SnapResult run_snap(PhysicsView& view, frontend::DiagnosticSink& sink);
+// Solves `system` in place: undefined nodes get their local transforms, and the world frames go into
+// `system.assembly`, which is returned. Over-determined or inconsistent mates are warnings at the mate's
+// line with the residual.
+const SnapResult& run_snap(ResolvedSystem& system, frontend::DiagnosticSink& sink);
 
 // How far a mate's connectors are from rest, ignoring its free degrees of freedom: the distance (m) and
 // the angle (rad) of what is constrained.

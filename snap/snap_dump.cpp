@@ -20,7 +20,7 @@ void line(std::ostream& out, const std::string& path, Transform t) {
 
 }  // namespace
 
-void dump_snap(std::ostream& out, const PhysicsView& view, const SnapResult& result,
+void dump_snap(std::ostream& out, const ResolvedSystem& view, const SnapResult& result,
                const std::string& root_name) {
   for (const auto& [is_node, index] : view.order) {
     if (is_node) {

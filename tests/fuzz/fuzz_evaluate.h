@@ -12,7 +12,7 @@
 #include "frontend/pipeline.h"
 #include "frontend/value_format.h"
 #include "mjcf_emitter/emitter.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 
 namespace openplx::fuzz {
@@ -28,12 +28,12 @@ inline void evaluate_one(const uint8_t* data, size_t size) {
   std::ostringstream out;
   fe::dump_values(out, *evaluation.evaluator, evaluation.root);
   // The passes after evaluation: the physics view, SNAP and the MJCF emitter.
-  openplx::snap::PhysicsView view =
-      openplx::snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
-  openplx::snap::SnapResult assembled = openplx::snap::run_snap(view, sink);
+  openplx::snap::ResolvedSystem view =
+      openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+  openplx::snap::run_snap(view, sink);
   openplx::mjcf::EmitOptions options;
   options.model_name = evaluation.evaluator->root_name();
-  out << openplx::mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink).document.to_string();
+  out << openplx::mjcf::emit_mjcf(view, options, sink).document.to_string();
   fe::print_diagnostics(out, sources, sink.diagnostics());
 }
 

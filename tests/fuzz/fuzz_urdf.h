@@ -14,7 +14,7 @@
 
 #include "frontend/pipeline.h"
 #include "mjcf_emitter/emitter.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 
 namespace openplx::fuzz {
@@ -32,13 +32,12 @@ inline void urdf_one(const uint8_t* data, size_t size) {
   fe::Evaluation evaluation = fe::evaluate_file({path, std::nullopt, {}, std::nullopt}, sources, sink);
   std::ostringstream out;
   if (evaluation.root != fe::kNoObject) {
-    openplx::snap::PhysicsView view =
-        openplx::snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
-    openplx::snap::SnapResult assembled = openplx::snap::run_snap(view, sink);
+    openplx::snap::ResolvedSystem view =
+        openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+    openplx::snap::run_snap(view, sink);
     openplx::mjcf::EmitOptions options;
     options.model_name = evaluation.evaluator->root_name();
-    out << openplx::mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, options, sink)
-               .document.to_string();
+    out << openplx::mjcf::emit_mjcf(view, options, sink).document.to_string();
   }
   fe::print_diagnostics(out, sources, sink.diagnostics());
 }

@@ -10,7 +10,7 @@
 #include <map>
 
 #include "mjcf_emitter/check.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "tests/support/mjcf_fixture.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "tests/support/eval_fixture.h"
 
 namespace {
@@ -30,7 +30,7 @@ class Snap : public openplx::testing::EvalTest {
   }
   bool assemble_loaded() {
     const size_t errors = sink_.error_count();
-    view_ = sn::build_physics_view(*evaluator_, root_, sink_);
+    view_ = sn::resolve_system(*evaluator_, root_, sink_);
     result_ = sn::run_snap(view_, sink_);
     return sink_.error_count() == errors;
   }
@@ -80,7 +80,7 @@ class Snap : public openplx::testing::EvalTest {
     EXPECT_LE(a.angularDistance(b), tol) << a.coeffs().transpose() << " vs " << b.coeffs().transpose();
   }
 
-  sn::PhysicsView view_;
+  sn::ResolvedSystem view_;
   sn::SnapResult result_;
 };
 

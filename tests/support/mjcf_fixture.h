@@ -9,7 +9,7 @@
 #include <string>
 
 #include "mjcf_emitter/emitter.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 #include "tests/support/eval_fixture.h"
 
@@ -19,12 +19,12 @@ class MjcfTest : public EvalTest {
  protected:
   // Emits the loaded model into dir()/name.xml; returns the path ("" on errors).
   std::string emit(const std::string& name) {
-    view_ = snap::build_physics_view(*evaluator_, root_, sink_);
+    view_ = snap::resolve_system(*evaluator_, root_, sink_);
     snap_ = snap::run_snap(view_, sink_);
     mjcf::EmitOptions options;
     options.model_name = evaluator_->root_name();
     options.output_dir = dir();
-    emitted_ = mjcf::emit_mjcf(view_, snap_, *evaluator_, options, sink_);
+    emitted_ = mjcf::emit_mjcf(view_, options, sink_);
     xml_ = emitted_.document.to_string();
     const std::string path = dir() + "/" + name + ".xml";
     std::ofstream(path) << xml_;
@@ -41,7 +41,7 @@ class MjcfTest : public EvalTest {
     return m;
   }
 
-  snap::PhysicsView view_;
+  snap::ResolvedSystem view_;
   snap::SnapResult snap_;
   mjcf::Emitted emitted_;
   std::string xml_;

@@ -20,7 +20,7 @@
 #include "frontend/value_format.h"
 #include "mjcf_emitter/check.h"
 #include "mjcf_emitter/emitter.h"
-#include "snap/physics_view.h"
+#include "snap/resolve_system.h"
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
 #include "tools/cli/atomic_file.h"
@@ -64,8 +64,8 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
 // Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
 // --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did.
 void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOptions& emit_options,
-           const snap::PhysicsView& view, const snap::SnapResult& assembled, const fe::Evaluation& evaluation,
-           fe::DiagnosticSink& sink) {
+           const snap::ResolvedSystem& view, const snap::SnapResult& assembled,
+           const fe::Evaluation& evaluation, fe::DiagnosticSink& sink) {
   namespace fs = std::filesystem;
   // Beside the output (so relative mesh paths resolve), else in the temporary folder.
   const fs::path dir =
@@ -109,8 +109,8 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   if (evaluation.root == fe::kNoObject || sink.has_errors()) return true;
   if (options.dump == DumpKind::Values) fe::dump_values(text, *evaluation.evaluator, evaluation.root);
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
-  snap::PhysicsView view = snap::build_physics_view(*evaluation.evaluator, evaluation.root, sink);
-  snap::SnapResult assembled = snap::run_snap(view, sink);
+  snap::ResolvedSystem view = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+  const snap::SnapResult& assembled = snap::run_snap(view, sink);
   if (options.dump == DumpKind::Snap)
     snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
   if (options.dump != DumpKind::None || sink.has_errors()) return true;
@@ -122,7 +122,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.timestep = options.timestep;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
-  mjcf::Emitted emitted = mjcf::emit_mjcf(view, assembled, *evaluation.evaluator, emit_options, sink);
+  mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
   if (sink.has_errors()) return true;
   const std::string xml = emitted.document.to_string();
   if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);

@@ -1,19 +1,23 @@
-#include "snap/physics_view.h"
-
-#include "frontend/urdf/package_uri.h"
+#include "snap/resolve_system.h"
 
 #include <filesystem>
 #include <map>
 #include <unordered_map>
 
+#include "frontend/urdf/package_uri.h"
+#include "snap/attribute_reader.h"
+#include "snap/read_parameters.h"
+
 namespace openplx::snap {
 namespace {
 
 namespace fe = openplx::frontend;
+static_assert(std::is_same_v<ObjectRef, fe::ObjectId> && kNoObjectRef == fe::kNoObject);
 
-class ViewBuilder {
+class SystemBuilder {
  public:
-  ViewBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink) : ev_(evaluator), sink_(sink) {
+  SystemBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink)
+      : ev_(evaluator), in_(evaluator), sink_(sink) {
     fe::Program& program = evaluator.program();
     // Roles are checked against models the evaluation loaded; a bundle it never loaded cannot be a base of
     // anything, and loading it here would only cost time (Terrain, Vehicles, DriveTrain for a simple arm).
@@ -89,7 +93,7 @@ class ViewBuilder {
     }
   }
 
-  PhysicsView build(fe::ObjectId root) {
+  ResolvedSystem build(fe::ObjectId root) {
     if (!system_ || !body_ || !connector_ || !mate_)
       return std::move(view_);  // no Physics3D: nothing to assemble
     // Depth-first in declaration order, parents before children.
@@ -108,6 +112,15 @@ class ViewBuilder {
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
     resolve_drivetrain();
     resolve_packages();
+    for (Interaction1D& interaction : view_.interactions)
+      read_interaction_parameters(in_, interaction.object, interaction);
+    resolve_materials();
+    for (size_t f = 0; f < view_.collision_filters.size(); ++f) {
+      view_.collision_filters[f].group1 = collision_group(filter_groups_[f].first);
+      view_.collision_filters[f].group2 = collision_group(filter_groups_[f].second);
+    }
+    for (size_t k = 0; k < view_.signals.size(); ++k) resolve_source(view_.signals[k], signal_sources_[k]);
+    view_.gravity = read_gravity(in_, view_.root >= 0 ? view_.nodes[view_.root].object : fe::kNoObject);
     return std::move(view_);
   }
 
@@ -140,6 +153,7 @@ class ViewBuilder {
                                    {},
                                    -1,
                                    real(id, kind == Kind::Differential ? "gear_ratio" : "ratio", 1.0),
+                                   kind == Kind::Differential && in_.boolean(id, "locked_up").value_or(false),
                                    where_of(id)});
         break;
       }
@@ -162,12 +176,19 @@ class ViewBuilder {
         add_signal(id);
         break;
       case Role::Kind::VisualMaterial:
-        view_.visual_materials.push_back(id);
+        view_.visual_materials.push_back(read_visual_material(in_, id));
         break;
-      case Role::Kind::ContactModel:
-        view_.contact_models.push_back(
-            {id, ev_.graph().path(id), object(id, "material_1"), object(id, "material_2"), where_of(id)});
+      case Role::Kind::ContactModel: {
+        ContactModel model;
+        model.object = id;
+        model.path = ev_.graph().path(id);
+        model.material1 = material_index(object(id, "material_1"));
+        model.material2 = material_index(object(id, "material_2"));
+        model.where = where_of(id);
+        read_contact_parameters(in_, id, model);
+        view_.contact_models.push_back(std::move(model));
         break;
+      }
       case Role::Kind::Mimic:
         view_.joint_couplings.push_back({id, ev_.graph().path(id), -1, -1, real(id, "multiplier", 1.0),
                                          real(id, "offset", 0.0), where_of(id)});
@@ -185,8 +206,8 @@ class ViewBuilder {
         }
         break;
       case Role::Kind::CollisionFilter:
-        view_.collision_filters.push_back(
-            {id, ev_.graph().path(id), object(id, "group1"), object(id, "group2"), where_of(id)});
+        view_.collision_filters.push_back({id, ev_.graph().path(id), {}, {}, where_of(id)});
+        filter_groups_.emplace_back(object(id, "group1"), object(id, "group2"));
         break;
       case Role::Kind::None:
         break;
@@ -324,7 +345,7 @@ class ViewBuilder {
     } else if (scale && scale->is_number()) {
       g.scale = Eigen::Vector3d::Constant(scale->as_real());
     }
-    g.material = object(id, "material");
+    geometry_materials_.push_back(object(id, "material"));
     if (const fe::Value* c = ev_.value(id, "enable_collisions"); c && c->kind == fe::Value::Kind::Bool)
       g.collides = c->bool_value;
     if (const fe::Value* m = ev_.value(id, "include_in_mass_properties");
@@ -441,11 +462,74 @@ class ViewBuilder {
     signal.input = is(obj, input_);
     signal.path = ev_.graph().path(id);
     signal.type = obj.type->qualified;
-    signal.source = object(id, "source");
+    signal_sources_.push_back(object(id, "source"));
     signal.where = where_of(id);
     if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
       signal.enabled = e->bool_value;
     view_.signals.push_back(std::move(signal));
+  }
+
+  // Materials by index, shared by geometries and contact models (the same material, the same index).
+  int material_index(fe::ObjectId id) {
+    if (id == fe::kNoObject) return -1;
+    auto [it, fresh] = material_of_.try_emplace(id, static_cast<int>(view_.materials.size()));
+    if (fresh) view_.materials.push_back({id, in_.real(id, "density", 1000.0)});
+    return it->second;
+  }
+
+  // Geometries' materials: a contact material by index, a visual one as its visual material.
+  void resolve_materials() {
+    std::unordered_map<fe::ObjectId, int> visual;
+    for (size_t k = 0; k < view_.visual_materials.size(); ++k)
+      visual[view_.visual_materials[k].object] = static_cast<int>(k);
+    for (size_t k = 0; k < view_.geometries.size(); ++k) {
+      Geometry& g = view_.geometries[k];
+      g.material = material_index(geometry_materials_[k]);
+      if (auto it = visual.find(geometry_materials_[k]); it != visual.end()) g.visual_material = it->second;
+    }
+  }
+
+  // A Simulation.CollisionGroup's lists as nodes and geometries of this system.
+  CollisionGroup collision_group(fe::ObjectId group) {
+    CollisionGroup out;
+    if (group == fe::kNoObject) return out;
+    for (fe::ObjectId body : in_.objects(group, "bodies"))
+      if (auto it = node_of_.find(body); it != node_of_.end()) out.bodies.push_back(it->second);
+    for (fe::ObjectId system : in_.objects(group, "systems"))
+      if (auto it = node_of_.find(system); it != node_of_.end()) out.systems.push_back(it->second);
+    const std::vector<fe::ObjectId> listed = in_.objects(group, "geometries");
+    for (size_t k = 0; k < view_.geometries.size(); ++k) {
+      if (std::find(listed.begin(), listed.end(), view_.geometries[k].object) != listed.end())
+        out.geometries.push_back(static_cast<int>(k));
+    }
+    return out;
+  }
+
+  // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
+  void resolve_source(Signal& signal, fe::ObjectId source) {
+    if (source == fe::kNoObject) return;
+    if (sources_.empty()) build_source_index();
+    auto it = sources_.find(source);
+    if (it != sources_.end()) {
+      signal.source_kind = it->second.first;
+      signal.source = it->second.second;
+      return;
+    }
+    signal.source_kind = SignalSource::Other;
+    signal.source_path = ev_.graph().path(source);
+  }
+  void build_source_index() {
+    // Inserted in reverse priority, so an object that were two things would keep the first kind.
+    auto add = [&](SignalSource kind, const auto& items, auto accept) {
+      for (size_t k = 0; k < items.size(); ++k)
+        if (accept(items[k])) sources_[items[k].object] = {kind, static_cast<int>(k)};
+    };
+    auto all = [](const auto&) { return true; };
+    add(SignalSource::Connector, view_.connectors, all);
+    add(SignalSource::Shaft, view_.shafts, all);
+    add(SignalSource::Body, view_.nodes, [](const FrameNode& n) { return n.kind == FrameNode::Kind::Body; });
+    add(SignalSource::Mate, view_.mates, all);
+    add(SignalSource::Interaction, view_.interactions, all);
   }
 
   fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
@@ -586,6 +670,7 @@ class ViewBuilder {
     if (const fe::Value* snap = ev_.value(id, "enable_snap"); snap && snap->kind == fe::Value::Kind::Bool) {
       mate.enable_snap = snap->bool_value;
     }
+    read_mate_parameters(in_, id, mate);
     view_.mates.push_back(std::move(mate));
   }
 
@@ -621,8 +706,14 @@ class ViewBuilder {
   }
 
   fe::Evaluator& ev_;
+  AttributeReader in_;
   fe::DiagnosticSink& sink_;
-  PhysicsView view_;
+  ResolvedSystem view_;
+  std::vector<fe::ObjectId> geometry_materials_;                      // per geometry: its `material`
+  std::vector<fe::ObjectId> signal_sources_;                          // per signal: its `source`
+  std::vector<std::pair<fe::ObjectId, fe::ObjectId>> filter_groups_;  // per collision filter
+  std::unordered_map<fe::ObjectId, int> material_of_;
+  std::unordered_map<fe::ObjectId, std::pair<SignalSource, int>> sources_;
   fe::ModelInfo* system_ = nullptr;
   fe::ModelInfo* body_ = nullptr;
   fe::ModelInfo* connector_ = nullptr;
@@ -668,9 +759,9 @@ frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::Ob
   return slot->declaration->member->range;
 }
 
-PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root,
-                               frontend::DiagnosticSink& sink) {
-  return ViewBuilder(evaluator, sink).build(root);
+ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,
+                              frontend::DiagnosticSink& sink) {
+  return SystemBuilder(evaluator, sink).build(root);
 }
 
 Transform joint_offset(const Mate& mate) {

@@ -1,22 +1,35 @@
-// The physics view of an evaluated model: the frame tree of systems and bodies, mate connectors with their
-// frames, and mates with their connectors and initial values. Read from the ObjectGraph by model type
-// (Physics3D.System, Physics3D.Bodies.Body, Physics3D.Interactions.MateConnector, ...Mate), so user models
-// deriving from the bundle models are recognised. Problems (a normal parallel to its main axis, a mate
-// without two connectors) are reported at the user's line.
+// The resolved system: everything later passes need to know about an evaluated OpenPLX model, as typed data
+// built once from the ObjectGraph (resolve_system.h) and completed by SNAP (snap.h). The frame tree of
+// systems and bodies with their mass properties and initial velocities, geometries with their materials,
+// mate connectors, mates with per-DOF flexibility, dissipation and friction as numbers, 1-DOF interactions
+// with every parameter, drivetrain parts, signals with their resolved sources, contact models, collision
+// groups, gravity, and the assembled world frames. Every item keeps the source range it came from.
+//
+// The MJCF emitter and the runtime read only this: nothing here refers back to the evaluator. `object` fields
+// are the ObjectGraph ids the items came from, kept as plain numbers (identity for the builder and tools).
+// Attribute values are stored as the model gives them; policies (defaults that depend on the time step, what
+// MuJoCo can express) belong to the emitter.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "frontend/diagnostics.h"
-#include "frontend/evaluator.h"
 #include "frontend/natives/math_rotation.h"
+#include "frontend/source.h"
 
 namespace openplx::snap {
 
 using Transform = natives::Affine;  // rotate, then translate; compose(lhs, rhs) applies rhs first
+using ObjectRef = std::uint32_t;    // an ObjectGraph id (frontend::ObjectId)
+inline constexpr ObjectRef kNoObjectRef = UINT32_MAX;
 
 inline constexpr int kWorld = -1;  // the world frame: parent of the root node, owner of World connectors
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Mass properties of a body, as the model gives them (mass 0 / zero tensor: compute from the geometry).
 struct BodyProperties {
@@ -31,7 +44,7 @@ struct BodyProperties {
 struct FrameNode {
   enum class Kind { System, Body };
   Kind kind;
-  frontend::ObjectId object;
+  ObjectRef object;
   int parent = kWorld;     // index into nodes, or kWorld
   std::string path;        // instance path relative to the root ("" for the root)
   Transform local;         // relative to the parent node (SNAP fills the undefined ones)
@@ -44,7 +57,7 @@ struct FrameNode {
 // A collision or visual shape attached to a body (or a system).
 struct Geometry {
   enum class Shape { Box, Sphere, Cylinder, Capsule, Plane, ConvexMesh, TriMesh, ExternalMesh, Other };
-  frontend::ObjectId object;
+  ObjectRef object;
   Shape shape = Shape::Other;
   bool visual = false;  // a Visuals geometry: drawn, never collides, no mass
   int owner = kWorld;
@@ -57,10 +70,40 @@ struct Geometry {
   std::string package_uri;                // a URDF mesh's `package://` name, resolved into `file`
   std::vector<Eigen::Vector3d> vertices;  // ConvexMesh, TriMesh (in the geometry frame)
   std::vector<int> indices;               // TriMesh: three vertex indices per triangle
-  frontend::ObjectId material = frontend::kNoObject;
+  int material = -1;         // index into ResolvedSystem::materials (the `material` attribute), -1: none
+  int visual_material = -1;  // its material as an index into ResolvedSystem::visual_materials, -1: none
   bool collides = true;
   bool in_mass = true;
   frontend::SourceRange where;
+};
+
+// A material some geometry or contact model names (Physics.Charges/Physics3D material, or a visual one).
+struct Material {
+  ObjectRef object;
+  double density = 1000.0;  // kg/m^3; 1000 when the material gives none
+};
+
+// An inline texture map of a visual material (pixels in the model, not an image file).
+struct InlineTexture {
+  std::string attribute;  // base_color_map, roughness_map, ...
+  frontend::SourceRange where;
+};
+
+// Visuals.Materials.Material.
+struct VisualMaterial {
+  ObjectRef object;
+  std::string path;
+  std::optional<Eigen::Vector4d> tint;  // base_color_tint r, g, b, a (a component that is not a number: 1)
+  std::optional<double> roughness, metallic;
+  std::vector<InlineTexture> inline_textures;  // maps that carry pixels with a positive width and height
+  frontend::SourceRange where;
+};
+
+// Viscous damping as the model gives it: MechanicalDamping's damping constant, or a relaxation time.
+struct Damping {
+  bool given = false;  // a dissipation model is present
+  std::optional<double> damping_constant;
+  std::optional<double> relaxation_time;
 };
 
 // Springs, ranges and motors acting on the degree of freedom of a mate's connectors.
@@ -76,27 +119,41 @@ struct Interaction1D {
     TorqueMotor,
     Other
   };
-  frontend::ObjectId object;
+  ObjectRef object;
   Kind kind = Kind::Other;
   std::string path;
   int mate = -1;   // the mate with the same two connectors, -1 when none
   int shaft = -1;  // a drivetrain motor: the shaft it drives
+  bool enabled = true;
+  double start = 0, end = 0;                     // ranges
+  double stiffness = 0;                          // springs: flexibility.stiffness (0: none given)
+  double rest = 0;                               // springs: position (linear) or angle (torsion)
+  Damping damping;                               // springs: dissipation
+  double min_effort = -kInf, max_effort = kInf;  // springs and motors
+  std::optional<double> gain;                    // velocity motors
+  std::optional<double> target_speed;            // velocity motors
+  double default_effort = 0;                     // force/torque motors: default_force / default_torque
   frontend::SourceRange where;
 };
 
+// What an OpenPLX signal's `source` is in this system.
+enum class SignalSource { None, Interaction, Mate, Body, Shaft, Connector, Other };
+
 // An OpenPLX input or output signal of the tree.
 struct Signal {
-  frontend::ObjectId object;
+  ObjectRef object;
   bool input = false;
   std::string path;
   std::string type;  // its model, e.g. "Physics.Signals.AngleOutput"
-  frontend::ObjectId source = frontend::kNoObject;
+  SignalSource source_kind = SignalSource::None;
+  int source = -1;  // index into the list of its kind (interactions, mates, nodes, shafts, connectors)
+  std::string source_path;  // the source's instance path (Other sources)
   bool enabled = true;
   frontend::SourceRange where;
 };
 
 struct Connector {
-  frontend::ObjectId object;
+  ObjectRef object;
   int owner = kWorld;  // node index or kWorld
   std::string path;
   Transform local;  // frame relative to the owner: z = main_axis, x = normal (orthogonalised), y = z × x
@@ -106,32 +163,56 @@ struct Connector {
 
 enum class MateType { Lock, Hinge, Prismatic, Cylindrical, Ball, Distance, ConstantVelocity, Other };
 
+// A mate's stiffness and damping in one of its six directions.
+struct DofCompliance {
+  double stiffness = 0;  // LinearElastic stiffness (0: none)
+  std::optional<double> damping_constant;
+  std::optional<double> relaxation_time;
+};
+
+// Dry friction of a mate's free degree of freedom.
+struct MateFriction {
+  std::string type;  // its model's qualified name, "" when none
+  double coefficient = 0, normal_force = 0;
+};
+
 struct Mate {
-  frontend::ObjectId object;
+  // Directions of flexibility and dissipation, in this order.
+  static constexpr const char* kDirections[6] = {"along_main",  "along_normal",  "along_cross",
+                                                 "around_main", "around_normal", "around_cross"};
+  ObjectRef object;
   MateType type = MateType::Other;
   std::string path;
-  int connectors[2] = {-1, -1};  // indices into PhysicsView::connectors; -1 when missing
+  int connectors[2] = {-1, -1};  // indices into ResolvedSystem::connectors; -1 when missing
   double initial_angle = 0.0;
   double initial_position = 0.0;
   double initial_normal_angle = 0.0;
   double initial_cross_angle = 0.0;
   bool enable_snap = true;
+  bool enabled = true;
+  bool flexible = false;         // a flexibility model is given
+  std::string flexibility_type;  // qualified model names, "" when none
+  std::string dissipation_type;
+  std::array<DofCompliance, 6> dofs;  // per kDirections
+  MateFriction friction, friction_translational, friction_rotational;
   frontend::SourceRange where;
 };
 
 // Contact properties for a pair of materials (Physics.Interactions.SurfaceContact.Model).
 struct ContactModel {
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
-  frontend::ObjectId material1 = frontend::kNoObject;
-  frontend::ObjectId material2 = frontend::kNoObject;
+  int material1 = -1, material2 = -1;  // indices into ResolvedSystem::materials, -1: none
+  bool enabled = true;
+  double friction = 1.0;  // its friction model's coefficient (1 when none)
+  double normal_restitution = 0, tangential_restitution = 0;
   frontend::SourceRange where;
 };
 
-// A model with no MuJoCo counterpart (terrain, shovels, tracked belts, lidars): kept out of the view,
+// A model with no MuJoCo counterpart (terrain, shovels, tracked belts, lidars): kept out of the system,
 // its mappable neighbours go on without it.
 struct Unsupported {
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
   std::string type;
   frontend::SourceRange where;
@@ -139,7 +220,7 @@ struct Unsupported {
 
 // A rotating 1-D body of a drivetrain (DriveTrain.Shaft, Physics1D rotational bodies).
 struct Shaft {
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
   double inertia = 1.0;  // kg m^2
   frontend::SourceRange where;
@@ -149,17 +230,18 @@ struct Shaft {
 struct DriveCoupling {
   enum class Kind { Actuator, Gear, Differential };
   Kind kind = Kind::Gear;
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
   std::vector<int> shafts;  // Actuator: {shaft}; Gear: {input, output}; Differential: {drive, left, right}
   int mate = -1;            // Actuator: the 3-D mate it drives
   double ratio = 1.0;       // Gear: ratio; Differential: gear_ratio
+  bool locked_up = false;   // Differential
   frontend::SourceRange where;
 };
 
 // A joint that follows another (Urdf.Mimic): follower = multiplier * leader + offset.
 struct JointCoupling {
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
   int follower = -1, leader = -1;  // mate indices
   double multiplier = 1.0, offset = 0.0;
@@ -169,48 +251,65 @@ struct JointCoupling {
 // What a URDF joint adds to its mate (Urdf.JointProperties): <dynamics> damping and Coulomb friction, and
 // the <limit> effort and velocity that bound the motors a user adds (0: none).
 struct JointProperties {
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
   int mate = -1;
   double damping = 0, friction = 0, effort = 0, velocity = 0;
   frontend::SourceRange where;
 };
 
+// A Simulation.CollisionGroup as indices into the system.
+struct CollisionGroup {
+  std::vector<int> bodies;      // nodes its `bodies` list names
+  std::vector<int> systems;     // nodes its `systems` list names
+  std::vector<int> geometries;  // geometries its `geometries` list names
+};
+
 // A Simulation.DisableCollisionPair: no contacts between what its two CollisionGroups hold.
 struct CollisionFilter {
-  frontend::ObjectId object;
+  ObjectRef object;
   std::string path;
-  frontend::ObjectId group1 = frontend::kNoObject, group2 = frontend::kNoObject;
+  CollisionGroup group1, group2;
   frontend::SourceRange where;
 };
 
-struct PhysicsView {
+// Simulation.Environment's gravity field of the root.
+struct Gravity {
+  enum class Kind { Standard, Uniform, NonUniform };
+  Kind kind = Kind::Standard;
+  Eigen::Vector3d vector{0, 0, -9.81};  // Uniform: the field's vector
+};
+
+// SNAP's output: world frames of the assembled system.
+struct SnapResult {
+  std::vector<Transform> node_world;       // per node
+  std::vector<Transform> connector_world;  // per connector
+  std::vector<int> placed_by;              // per node: the mate that placed it, -1 if none
+  std::vector<bool> forced;                // per node: forced to the identity
+};
+
+struct ResolvedSystem {
   std::vector<FrameNode> nodes;  // parents before children, in declaration order
   std::vector<Connector> connectors;
   std::vector<Mate> mates;
   std::vector<Geometry> geometries;
+  std::vector<Material> materials;
   std::vector<Interaction1D> interactions;
   std::vector<Signal> signals;
   std::vector<Unsupported> unsupported;
   std::vector<ContactModel> contact_models;
-  std::vector<frontend::ObjectId>
-      visual_materials;  // Visuals.Materials.Material instances, the root included
+  std::vector<VisualMaterial> visual_materials;  // Visuals.Materials.Material instances, the root included
   std::vector<Shaft> shafts;
   std::vector<DriveCoupling> couplings;
   std::vector<JointCoupling> joint_couplings;
   std::vector<JointProperties> joint_properties;
   std::vector<CollisionFilter> collision_filters;
+  Gravity gravity;
   int root = kWorld;  // node of the root object, when it is a system or a body
   // Nodes and the tree's own connectors in declaration order (depth first): {is_node, index}.
   std::vector<std::pair<bool, int>> order;
+  SnapResult assembly;  // filled by run_snap
 };
-
-// Where an instance was declared: its attribute's line in the owner, or its model's declaration for roots.
-frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id);
-
-// Builds the view of the tree under `root`. Requires the graph to be fully evaluated.
-PhysicsView build_physics_view(frontend::Evaluator& evaluator, frontend::ObjectId root,
-                               frontend::DiagnosticSink& sink);
 
 // The offset a mate's free degrees of freedom take at rest: connectors[1]'s frame relative to
 // connectors[0]'s. Hinge: rotation by initial_angle about main_axis (right-handed); Prismatic: translation by

@@ -1,0 +1,84 @@
+// Lowering pass, assets: <material>s from visual materials and <mesh>es from files or vertices.
+#include "mjcf_emitter/lowering.h"
+
+#include <cctype>
+#include <filesystem>
+
+namespace openplx::mjcf {
+
+// Visuals materials as MJCF materials: base colour tint -> rgba, 1 - roughness -> shininess (MuJoCo's is
+// a glossiness), metallic -> reflectance. Textures have no mapping yet.
+void Lowering::emit_visual_materials() {
+  for (const sn::VisualMaterial& m : view_.visual_materials) {
+    Element& material = assets_->add("material");
+    material.set("name", name(m.path));
+    if (m.tint) {
+      const Eigen::Vector4d& c = *m.tint;
+      material.set("rgba", number(c[0]) + " " + number(c[1]) + " " + number(c[2]) + " " + number(c[3]));
+    }
+    if (m.roughness) material.set("shininess", std::clamp(1.0 - *m.roughness, 0.0, 1.0));
+    if (m.metallic) material.set("reflectance", std::clamp(*m.metallic, 0.0, 1.0));
+    // Texture maps carry pixels inline (base64); MuJoCo 2.2.2 reads textures only from image files.
+    for (const sn::InlineTexture& texture : m.inline_textures) {
+      warn(texture.where, "`" + m.path + "." + texture.attribute +
+                              "` is an inline texture, which MuJoCo 2.2.2 cannot read (it takes image "
+                              "files); the material keeps its colour only");
+    }
+  }
+}
+
+// A mesh given by its vertices (and, for a TriMesh, its triangles) as an inline MJCF mesh asset.
+std::string Lowering::vertex_mesh_asset(const sn::Geometry& g) {
+  const size_t n = g.vertices.size();
+  bool valid_faces = g.indices.size() % 3 == 0;
+  for (int k : g.indices) valid_faces = valid_faces && k >= 0 && static_cast<size_t>(k) < n;
+  if (n < 4 || !valid_faces) {
+    warn(g.where,
+         "`" + g.path +
+             (n < 4 ? ".vertices` has fewer than 4 points" : ".indices` are not triangles of its vertices") +
+             "; MuJoCo needs a solid mesh, so it was left out");
+    return {};
+  }
+  if (g.shape == sn::Geometry::Shape::TriMesh && g.collides) {
+    warn(g.where, "`" + g.path +
+                      "` is a triangle mesh; MuJoCo 2.2.2 collides with its convex hull, so contacts "
+                      "use the hull");
+  }
+  std::string vertex, face;
+  for (const Eigen::Vector3d& p : g.vertices) {
+    vertex += (vertex.empty() ? "" : " ") + number(p.x()) + " " + number(p.y()) + " " + number(p.z());
+  }
+  for (int k : g.indices) face += (face.empty() ? "" : " ") + std::to_string(k);
+  const std::string mesh_name = name(g.path);
+  Element& mesh = assets_->add("mesh");
+  mesh.set("name", mesh_name).set("vertex", vertex);
+  if (!face.empty()) mesh.set("face", face);
+  return mesh_name;
+}
+
+std::string Lowering::mesh_asset(const sn::Geometry& g) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(g.file, ec)) {
+    sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
+                 "mesh file " + g.file + " of `" + g.path + "` not found");
+    return {};
+  }
+  std::string ext = fs::path(g.file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".obj" && ext != ".stl" && ext != ".msh") {
+    sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
+                 "mesh file " + g.file + " of `" + g.path + "` is " + ext +
+                     "; MuJoCo 2.2.2 reads OBJ, binary STL and MSH");
+    return {};
+  }
+  std::string file = g.file;
+  if (!options_.output_dir.empty())
+    file = fs::path(g.file).lexically_relative(options_.output_dir).generic_string();
+  const std::string mesh_name = name(g.path);
+  assets_->add("mesh").set("name", mesh_name).set("file", file).set("scale", g.scale);
+  return mesh_name;
+}
+
+}  // namespace openplx::mjcf

@@ -1,0 +1,218 @@
+// Lowering pass, bodies: <body> with its pose, <inertial> and <geom>s, world geoms, mocap and free bodies.
+#include "mjcf_emitter/lowering.h"
+
+#include <cmath>
+
+namespace openplx::mjcf {
+
+using natives::affine_compose;
+using natives::affine_inverse;
+
+void Lowering::emit_world_geoms(Element& world) {
+  for (const sn::Geometry& g : view_.geometries) {
+    if (is_body(g.owner)) continue;
+    // Geometries of systems are fixed in the world at the system's pose.
+    const sn::Transform frame = g.owner >= 0 ? snap_.node_world[g.owner] : sn::Transform{};
+    emit_geom(world, g, affine_compose(frame, g.local), true);
+  }
+}
+
+void Lowering::emit_bodies(Element& world) {
+  // Children lists in declaration order.
+  std::map<int, std::vector<int>>& children = tree_children_;
+  for (size_t n = 0; n < view_.nodes.size(); ++n) {
+    if (is_body(static_cast<int>(n))) children[edges_[n].parent].push_back(static_cast<int>(n));
+  }
+  struct Item {
+    int node;
+    Element* parent_element;
+    int depth;
+  };
+  std::vector<Item> stack;
+  const auto& roots = children[kWorldVertex];
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, &world, 1});
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (item.depth > kMaxBodyDepth) {
+      sink_.report(fe::DiagCode::MjcfTooDeep, view_.nodes[item.node].where,
+                   "the body chain reaches " + view_.nodes[item.node].path + " at depth " +
+                       std::to_string(item.depth) + "; MuJoCo 2.2.2 reads at most " +
+                       std::to_string(kMaxBodyDepth) + " nested bodies");
+      continue;
+    }
+    Element& body = emit_body(*item.parent_element, item.node);
+    const auto& kids = children[item.node];
+    for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back({*it, &body, item.depth + 1});
+  }
+}
+
+Element& Lowering::emit_body(Element& parent, int node) {
+  const sn::FrameNode& n = view_.nodes[node];
+  const int parent_node = edges_[node].parent;
+  const sn::Transform parent_world = parent_node >= 0 ? snap_.node_world[parent_node] : sn::Transform{};
+  const sn::Transform local = affine_compose(affine_inverse(parent_world), snap_.node_world[node]);
+  Element& body = parent.add("body");
+  body.set("name", name(n.path)).set("pos", local.position).set_quat("quat", local.rotation);
+  body_element_[node] = &body;
+  if (is_static(node)) {  // kinematic: the runtime moves it by its velocity inputs
+    body.set("mocap", "true");
+    mocap_.insert(node);
+  }
+  if (edges_[node].mate >= 0) child_of_mate_[edges_[node].mate] = node;
+  if (free_roots_.count(node)) body.add("freejoint").set("name", name(n.path));
+  if (edges_[node].mate >= 0) emit_joints(body, node, edges_[node].mate);
+  emit_inertial(body, node);
+  const bool moving = !n.body.initial_linear_velocity.isZero() || !n.body.initial_angular_velocity.isZero();
+  if (moving && free_roots_.count(node)) {
+    initial_velocities_.push_back(node);  // written as the "initial" keyframe (emit_initial_velocities)
+  } else if (moving) {
+    warn(n.where,
+         "`" + n.path +
+             ".kinematics.initial_local_*_velocity`: only a free body's initial velocity maps to MuJoCo "
+             "(a keyframe); this body starts at rest");
+  }
+  for (const sn::Geometry* g : geometries_of(node)) emit_geom(body, *g, g->local, !n.body.dynamic);
+  return body;
+}
+
+const std::vector<const sn::Geometry*>& Lowering::geometries_of(int node) {
+  if (geometries_by_owner_.empty()) {
+    for (const sn::Geometry& g : view_.geometries) geometries_by_owner_[g.owner].push_back(&g);
+  }
+  return geometries_by_owner_[node];
+}
+
+double Lowering::density_of(const sn::Geometry& g) {
+  return g.material >= 0 ? view_.materials[g.material].density : 1000.0;
+}
+
+void Lowering::emit_inertial(Element& body, int node) {
+  const sn::FrameNode& n = view_.nodes[node];
+  if (!n.body.dynamic) return;  // a static body needs no mass
+  const bool tensor_given = !n.body.inertia.isZero();
+  if (n.body.mass > 0 && tensor_given) {
+    const Eigen::Matrix3d r = n.body.cm.rotation.toRotationMatrix();
+    // The tensor turned into the body's axes: MJCF takes fullinertia or a quat, never both.
+    const Eigen::Matrix3d i = r * n.body.inertia * r.transpose();
+    body_mass_[node] = {n.body.mass, n.body.cm.position, i};
+    body.add("inertial")
+        .set("pos", n.body.cm.position)
+        .set("mass", n.body.mass)
+        .set("fullinertia", number(i(0, 0)) + " " + number(i(1, 1)) + " " + number(i(2, 2)) + " " +
+                                number(i(0, 1)) + " " + number(i(0, 2)) + " " + number(i(1, 2)));
+    return;
+  }
+  std::vector<std::pair<const sn::Geometry*, double>> parts;
+  bool meshes = false;
+  for (const sn::Geometry* g : geometries_of(node)) {
+    if (!g->in_mass) continue;
+    parts.emplace_back(g, density_of(*g));
+    meshes = meshes || !unit_density_properties(*g);
+  }
+  if (meshes) {
+    // MuJoCo computes mesh volumes exactly (exactmeshinertia); the mass goes on the geoms. For motor gains
+    // below, estimate the body as a sphere of radius 0.1 m.
+    mass_on_geoms_[node] = n.body.mass;
+    const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
+    body_mass_[node] = {mass, Eigen::Vector3d::Zero(), 0.4 * mass * 0.01 * Eigen::Matrix3d::Identity()};
+    return;
+  }
+  std::optional<MassProperties> p = combine(parts);
+  if (!p) {
+    const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
+    warn(n.where, "`" + n.path +
+                      ".inertia` gives no tensor and the body has no geometry to compute one from; " +
+                      "used a " + number(mass) + " kg sphere of radius 0.1 m");
+    body.add("inertial")
+        .set("pos", "0 0 0")
+        .set("mass", mass)
+        .set("diaginertia", Eigen::Vector3d::Constant(0.4 * mass * 0.01));
+    body_mass_[node] = {mass, Eigen::Vector3d::Zero(), 0.4 * mass * 0.01 * Eigen::Matrix3d::Identity()};
+    return;
+  }
+  if (n.body.mass > 0) {  // the model's mass, distributed like the geometry
+    p->inertia *= n.body.mass / p->mass;
+    p->mass = n.body.mass;
+  }
+  body_mass_[node] = *p;
+  body.add("inertial")
+      .set("pos", p->com)
+      .set("mass", p->mass)
+      .set("fullinertia", number(p->inertia(0, 0)) + " " + number(p->inertia(1, 1)) + " " +
+                              number(p->inertia(2, 2)) + " " + number(p->inertia(0, 1)) + " " +
+                              number(p->inertia(0, 2)) + " " + number(p->inertia(1, 2)));
+}
+
+void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Transform& pose, bool on_static) {
+  using Shape = sn::Geometry::Shape;
+  Element geom("geom");
+  geom.set("name", name(g.path));
+  sn::Transform frame = pose;
+  // OpenPLX cylinders and capsules lie along local Y; MuJoCo's along local Z.
+  const Eigen::Quaterniond y_to_z(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
+  const bool primitive = g.shape == Shape::Box || g.shape == Shape::Sphere || g.shape == Shape::Cylinder ||
+                         g.shape == Shape::Capsule;
+  const double smallest = g.shape == Shape::Box      ? g.size.minCoeff()
+                          : g.shape == Shape::Sphere ? g.size.x()
+                                                     : std::min(g.size.x(), g.size.y());
+  if (primitive && !(smallest > 0)) {
+    warn(g.where, "`" + g.path + "` has a zero size; MuJoCo needs positive sizes, so it was left out");
+    return;
+  }
+  switch (g.shape) {
+    case Shape::Box:
+      geom.set("type", "box").set("size", Eigen::Vector3d(g.size / 2));
+      break;
+    case Shape::Sphere:
+      geom.set("type", "sphere").set("size", g.size.x());
+      break;
+    case Shape::Cylinder:
+    case Shape::Capsule:
+      geom.set("type", g.shape == Shape::Cylinder ? "cylinder" : "capsule")
+          .set("size", number(g.size.x()) + " " + number(g.size.y() / 2));
+      frame.rotation = frame.rotation * y_to_z;
+      break;
+    case Shape::Plane:
+      if (!on_static) {
+        warn(g.where, "`" + g.path +
+                          "` is a plane on a moving body; MuJoCo 2.2.2 allows planes only on static "
+                          "bodies, so it was left out");
+        return;
+      }
+      geom.set("type", "plane").set("size", "0 0 1");
+      break;
+    case Shape::ExternalMesh: {
+      const std::string mesh = mesh_asset(g);
+      if (mesh.empty()) return;
+      geom.set("type", "mesh").set("mesh", mesh);
+      break;
+    }
+    case Shape::ConvexMesh:
+    case Shape::TriMesh: {
+      const std::string mesh = vertex_mesh_asset(g);
+      if (mesh.empty()) return;
+      geom.set("type", "mesh").set("mesh", mesh);
+      break;
+    }
+    default:
+      warn(g.where, "`" + g.path + "` is a geometry MuJoCo 2.2.2 has no counterpart for; it was left out");
+      return;
+  }
+  geom.set("pos", frame.position).set_quat("quat", frame.rotation);
+  if (g.visual) {
+    if (g.visual_material >= 0) geom.set("material", name(view_.visual_materials[g.visual_material].path));
+  }
+  if (!g.collides) geom.set("contype", 0).set("conaffinity", 0);
+  if (g.visual || !g.in_mass) geom.set("group", 3);  // outside inertiagrouprange: no mass
+  if (auto it = mass_on_geoms_.find(g.owner); it != mass_on_geoms_.end() && g.in_mass && it->second > 0) {
+    geom.set("mass", it->second);
+    it->second = 0;  // the whole given mass on the first geometry that counts
+  } else if (g.in_mass && !on_static) {
+    geom.set("density", density_of(g));
+  }
+  emitted_geoms_.insert(g.path);
+  parent.add(std::move(geom));
+}
+
+}  // namespace openplx::mjcf

@@ -1,0 +1,105 @@
+// Lowering pass, contacts: <pair>s from SurfaceContact models and <exclude>s from collision filters.
+#include "mjcf_emitter/lowering.h"
+
+namespace openplx::mjcf {
+
+// One <pair> per pair of colliding geometries whose materials a SurfaceContact model names.
+void Lowering::emit_contact_pairs(Element& root) {
+  Element* contact = root.child("contact");
+  for (const sn::ContactModel& cm : view_.contact_models) {
+    if (!cm.enabled) continue;
+    const double mu = cm.friction;
+    for (const auto& [restitution, value] : {std::pair{"normal_restitution", cm.normal_restitution},
+                                             {"tangential_restitution", cm.tangential_restitution}}) {
+      if (value != 0.0) {
+        warn(cm.where, "`" + cm.path + "." + restitution +
+                           "` has no MuJoCo 2.2.2 parameter; its contacts are "
+                           "emitted without restitution");
+      }
+    }
+    size_t pairs = 0;
+    for (const sn::Geometry& a : view_.geometries) {
+      for (const sn::Geometry& b : view_.geometries) {
+        if (&a >= &b || a.visual || b.visual || !a.collides || !b.collides || a.owner == b.owner) continue;
+        const bool match = (a.material == cm.material1 && b.material == cm.material2) ||
+                           (a.material == cm.material2 && b.material == cm.material1);
+        if (!match || !emitted_geoms_.count(a.path) || !emitted_geoms_.count(b.path)) continue;
+        contact->add("pair")
+            .set("name", name(cm.path) + "/" + std::to_string(pairs++))
+            .set("geom1", name(a.path))
+            .set("geom2", name(b.path))
+            .set("condim", 3)
+            .set("friction", number(mu) + " " + number(mu) + " 0.005 0.0001 0.0001");
+      }
+    }
+  }
+}
+
+// Simulation.DisableCollisionPair. MuJoCo excludes contacts per pair of bodies, so each group becomes the
+// bodies that hold its systems', bodies' and geometries' shapes; a group naming only some of a body's
+// colliding geometries is widened to the whole body, with a warning.
+void Lowering::emit_collision_filters(Element& root) {
+  if (view_.collision_filters.empty()) return;
+  Element* contact = root.child("contact");
+  std::set<std::pair<std::string, std::string>> excluded;
+  for (const std::unique_ptr<Element>& e : contact->children()) {
+    if (e->name() == "exclude") excluded.insert({*e->get("body1"), *e->get("body2")});
+  }
+  for (const sn::CollisionFilter& f : view_.collision_filters) {
+    std::vector<std::string> widened;
+    const std::set<std::string> first = group_bodies(f.group1, widened);
+    const std::set<std::string> second = group_bodies(f.group2, widened);
+    for (const std::string& body : widened) {
+      warn(f.where, "`" + f.path + "`: MuJoCo excludes contacts between whole bodies, so all of `" + body +
+                        "`'s geometries were excluded, not only those its group names");
+    }
+    for (const std::string& a : first) {
+      for (const std::string& b : second) {
+        if (a == b) continue;  // a body's own geometries never collide in MuJoCo
+        const auto pair = std::minmax(a, b);
+        if (excluded.insert({pair.first, pair.second}).second)
+          contact->add("exclude").set("body1", pair.first).set("body2", pair.second);
+      }
+    }
+  }
+}
+
+// The MuJoCo bodies holding the shapes of a Simulation.CollisionGroup.
+std::set<std::string> Lowering::group_bodies(const sn::CollisionGroup& group,
+                                             std::vector<std::string>& widened) {
+  std::set<std::string> bodies;
+  auto within = [&](int n, int ancestor) {
+    for (; n >= 0; n = view_.nodes[n].parent) {
+      if (n == ancestor) return true;
+    }
+    return false;
+  };
+  for (int body : group.bodies) bodies.insert(mujoco_body(body));
+  for (int system : group.systems) {
+    for (const sn::Geometry& g : view_.geometries) {
+      if (g.collides && within(g.owner, system)) bodies.insert(mujoco_body(g.owner));
+    }
+  }
+  const std::set<int> geometries(group.geometries.begin(), group.geometries.end());
+  std::set<int> owners;
+  for (int g : geometries) owners.insert(view_.geometries[g].owner);
+  for (int owner : owners) {
+    const std::string body = mujoco_body(owner);
+    bodies.insert(body);
+    for (size_t k = 0; k < view_.geometries.size(); ++k) {
+      const sn::Geometry& g = view_.geometries[k];
+      if (g.owner == owner && g.collides && !geometries.count(static_cast<int>(k))) {
+        if (std::find(widened.begin(), widened.end(), body) == widened.end()) widened.push_back(body);
+        break;
+      }
+    }
+  }
+  return bodies;
+}
+
+// The MuJoCo body a node's shapes end up in: its own, or the world for a system's (emit_world_geoms).
+std::string Lowering::mujoco_body(int n) {
+  return n >= 0 && is_body(n) ? name(view_.nodes[n].path) : "world";
+}
+
+}  // namespace openplx::mjcf

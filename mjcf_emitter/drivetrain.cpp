@@ -1,0 +1,122 @@
+// Lowering pass, drivetrain: shafts as rotor bodies, actuator/gear joint equalities, differential tendons,
+// shaft motors.
+#include "mjcf_emitter/lowering.h"
+
+namespace openplx::mjcf {
+
+using natives::affine_compose;
+using natives::affine_inverse;
+
+void Lowering::emit_drivetrain(Element& root) {
+  if (view_.shafts.empty()) return;
+  for (const sn::Shaft& shaft : view_.shafts) {
+    Element& body = world_->add("body");
+    body.set("name", name(shaft.path)).set("pos", "0 0 0");
+    Element& joint = body.add("joint");
+    joint.set("name", name(shaft.path)).set("type", "hinge").set("axis", "0 0 1");
+    const double inertia = std::max(shaft.inertia, 1e-9);
+    body.add("inertial")
+        .set("pos", "0 0 0")
+        .set("mass", 1.0)
+        .set("diaginertia", Eigen::Vector3d::Constant(inertia));
+    shaft_joints_.push_back(name(shaft.path));
+  }
+  Element* equality = root.child("equality");
+  Element& tendons = root.add("tendon");
+  for (const sn::DriveCoupling& c : view_.couplings) {
+    const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });
+    const size_t needed = c.kind == sn::DriveCoupling::Kind::Actuator ? 1
+                          : c.kind == sn::DriveCoupling::Kind::Gear   ? 2
+                                                                      : 3;
+    if (!complete || c.shafts.size() != needed) {
+      warn(c.where, "`" + c.path + "` does not connect drivetrain shafts; it was left out");
+      continue;
+    }
+    switch (c.kind) {
+      case sn::DriveCoupling::Kind::Actuator: {
+        Element* joint = c.mate >= 0 && tree_mates_.count(c.mate)
+                             ? joint_for(c.mate, view_.mates[c.mate].type != sn::MateType::Prismatic)
+                             : nullptr;
+        if (!joint) {
+          warn(c.where, "`" + c.path +
+                            ".mate_3d` is not a hinge or prismatic joint of MuJoCo's tree; the "
+                            "actuator was left out");
+          continue;
+        }
+        equality->add("joint")
+            .set("name", name(c.path))
+            .set("joint1", *joint->get("name"))
+            .set("joint2", shaft_joints_[c.shafts[0]])
+            .set("polycoef", "0 1 0 0 0");
+        drive_edges_.push_back({c.shafts[0], -1, 1.0, joint});
+        break;
+      }
+      case sn::DriveCoupling::Kind::Gear:
+        if (c.ratio == 0) {
+          warn(c.where, "`" + c.path + ".ratio` is 0; the gear was left out");
+          continue;
+        }
+        equality->add("joint")
+            .set("name", name(c.path))
+            .set("joint1", shaft_joints_[c.shafts[1]])
+            .set("joint2", shaft_joints_[c.shafts[0]])
+            .set("polycoef", "0 " + number(1 / c.ratio) + " 0 0 0");
+        drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
+        break;
+      case sn::DriveCoupling::Kind::Differential: {
+        if (c.locked_up) {
+          warn(c.where, "`" + c.path + ".locked_up` has no mapping; the differential is emitted open");
+        }
+        Element& tendon = tendons.add("fixed");
+        tendon.set("name", name(c.path));
+        const double half = c.ratio / 2;
+        tendon.add("joint").set("joint", shaft_joints_[c.shafts[0]]).set("coef", 1.0);
+        tendon.add("joint").set("joint", shaft_joints_[c.shafts[1]]).set("coef", -half);
+        tendon.add("joint").set("joint", shaft_joints_[c.shafts[2]]).set("coef", -half);
+        equality->add("tendon").set("name", name(c.path)).set("tendon1", name(c.path));
+        // For gain estimates: an axle turns about 1/gear_ratio as fast as the drive.
+        drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
+        drive_edges_.push_back({c.shafts[0], c.shafts[2], 1 / c.ratio, nullptr});
+        break;
+      }
+    }
+  }
+}
+
+// A rotational velocity motor on a shaft: a <velocity> actuator on the shaft's joint, its gain capped like
+// the 3-D motors' by the inertia the whole drivetrain presents at that shaft.
+void Lowering::emit_shaft_motor(Element& actuators, const sn::Interaction1D& i) {
+  const double gain = i.gain.value_or(1e8);
+  const double stable = 0.5 * drivetrain_inertia(i.shaft) / options_.timestep;
+  if (gain > stable) note_capped_gain(i, gain, stable);
+  Element& a = actuators.add("velocity");
+  a.set("name", name(i.path)).set("joint", shaft_joints_[i.shaft]).set("kv", std::min(gain, stable));
+  effort_limits(a, i);
+  actuator_ctrl_[index_in(view_.interactions, i)] = {static_cast<int>(actuator_count_++),
+                                                     i.target_speed.value_or(1.0)};
+}
+
+// Inertia reflected to shaft `start`: every shaft's inertia and every driven joint's subtree inertia, times
+// the square of its speed relative to the start (gears scale speeds by their ratio; an even differential
+// split is assumed).
+double Lowering::drivetrain_inertia(int start) {
+  std::map<int, double> speed{{start, 1.0}};
+  std::vector<int> todo{start};
+  double total = 0;
+  while (!todo.empty()) {
+    const int s = todo.back();
+    todo.pop_back();
+    total += std::max(view_.shafts[s].inertia, 1e-9) * speed[s] * speed[s];
+    for (const DriveEdge& e : drive_edges_) {
+      if (e.joint && e.from == s) total += effective_inertia(*e.joint) * speed[s] * speed[s];
+      if (e.to < 0 || (e.from != s && e.to != s)) continue;
+      const int next = e.from == s ? e.to : e.from;
+      if (speed.count(next)) continue;
+      speed[next] = e.from == s ? speed[s] * e.factor : speed[s] / e.factor;
+      todo.push_back(next);
+    }
+  }
+  return total;
+}
+
+}  // namespace openplx::mjcf

@@ -1,0 +1,164 @@
+// Lowering pass, loop closures and couplings: <equality> weld/connect/joint, their soft parameters, loop
+// excludes.
+#include "mjcf_emitter/lowering.h"
+
+namespace openplx::mjcf {
+
+using natives::affine_compose;
+using natives::affine_inverse;
+
+void Lowering::emit_loop_closures(Element& root) {
+  Element& equality = root.add("equality");
+  Element& contact = root.add("contact");
+  std::set<std::pair<std::string, std::string>> excluded;
+  for (const auto& e : adjacency_) {
+    if (tree_mates_.count(e.mate)) continue;
+    const sn::Mate& mate = view_.mates[e.mate];
+    const std::string a = e.a >= 0 ? name(view_.nodes[e.a].path) : "world";
+    const std::string b = e.b >= 0 ? name(view_.nodes[e.b].path) : "world";
+    // The anchor: connector 0 in its body's frame (MuJoCo derives body2's point from the assembled pose).
+    // A connector on the world side (World, or one owned by a system) is given in world coordinates.
+    const sn::Transform frame0 =
+        e.a >= 0 ? view_.connectors[mate.connectors[0]].local : snap_.connector_world[mate.connectors[0]];
+    const sn::Transform frame1 =
+        e.b >= 0 ? view_.connectors[mate.connectors[1]].local : snap_.connector_world[mate.connectors[1]];
+    const Eigen::Vector3d anchor = frame0.position;
+    const std::optional<MateCompliance> soft = compliance(mate);
+    if (!soft) warn_mate_softness(mate, true);
+    switch (mate.type) {
+      case sn::MateType::Lock: {
+        Element& weld = equality.add("weld").set("name", name(mate.path)).set("body1", a);
+        if (e.b >= 0) weld.set("body2", b);
+        weld.set("anchor",
+                 frame1.position);  // where the error is measured: the weld point, in body2's frame
+        equalities_of_mate_[e.mate].push_back(*weld.get("name"));
+        if (soft) soft_equalities_.push_back({&weld, a, b, *soft, true});
+        break;
+      }
+      case sn::MateType::Ball:
+      case sn::MateType::Hinge: {
+        // A hinge closing a loop: two points on its axis (one would leave the axis free to tilt).
+        const Eigen::Vector3d axis = frame0.rotation * Eigen::Vector3d::UnitZ();
+        const int count = mate.type == sn::MateType::Hinge ? 2 : 1;
+        for (int k = 0; k < count; ++k) {
+          const Eigen::Vector3d point =
+              count == 1 ? anchor : Eigen::Vector3d(anchor + (k == 0 ? 0.05 : -0.05) * axis);
+          Element& connect = equality.add("connect");
+          connect.set("name", name(mate.path) + (count == 1 ? "" : (k == 0 ? ".a" : ".b"))).set("body1", a);
+          if (e.b >= 0) connect.set("body2", b);
+          connect.set("anchor", point);
+          equalities_of_mate_[e.mate].push_back(*connect.get("name"));
+          if (soft) soft_equalities_.push_back({&connect, a, b, *soft, false});
+        }
+        if (soft && soft->k_rot > 0) {
+          warn(mate.where, "`" + mate.path + ".flexibility`: the rotational stiffness of a " +
+                               sn::mate_type_name(mate.type) +
+                               " closing a loop is not mapped (MuJoCo's connect constrains points only); its "
+                               "translational stiffness is");
+        }
+        break;
+      }
+      default:
+        warn(mate.where, "`" + mate.path + "` closes a kinematic loop as a " + sn::mate_type_name(mate.type) +
+                             "; MuJoCo 2.2.2 has no exact equality for it, so it was left out");
+        continue;
+    }
+    if (e.a >= 0 && e.b >= 0 && excluded.insert({std::min(a, b), std::max(a, b)}).second) {
+      contact.add("exclude").set("body1", a).set("body2", b);
+    }
+    for (const sn::Interaction1D& i : view_.interactions) {
+      if (i.mate == e.mate) {
+        warn(i.where, "`" + i.path + "` acts on `" + mate.path +
+                          "`, which closes a loop and has no MuJoCo joint; " + "it was left out");
+      }
+    }
+  }
+}
+
+// A loop-closing mate's elastic flexibility (LinearElastic per direction) and its dissipation, as physical
+// stiffness and damping: the mean over the translational and over the rotational directions (one weld has
+// one value each; differing directions are warned). Damping: MechanicalDamping as given, a relaxation time
+// t as t k, else AGX's default of two time steps. nullopt when the mate is rigid.
+std::optional<MateCompliance> Lowering::compliance(const sn::Mate& mate) {
+  if (!mate.flexible) return std::nullopt;
+  MateCompliance c;
+  bool differs = false;
+  auto directions = [&](size_t from, double& k_mean, double& b_mean) {
+    int count = 0;
+    double first = -1;
+    for (size_t axis = from; axis < from + 3; ++axis) {
+      const sn::DofCompliance& dof = mate.dofs[axis];
+      const double k = dof.stiffness;
+      if (!(k > 0)) continue;
+      double b = 2 * options_.timestep * k;
+      if (dof.damping_constant) b = *dof.damping_constant;
+      if (dof.relaxation_time) b = *dof.relaxation_time * k;
+      differs = differs || (first >= 0 && k != first);
+      first = k;
+      k_mean += k;
+      b_mean += b;
+      ++count;
+    }
+    if (count > 0) {
+      k_mean /= count;
+      b_mean /= count;
+    }
+  };
+  directions(0, c.k_trans, c.b_trans);  // along main, normal, cross
+  directions(3, c.k_rot, c.b_rot);      // around them
+  if (!(c.k_trans > 0)) return std::nullopt;
+  if (differs) {
+    warn(mate.where, "`" + mate.path +
+                         ".flexibility` differs between directions; a MuJoCo equality has one stiffness for "
+                         "its translations (and one for its rotations), so their means were used");
+  }
+  return c;
+}
+
+// Flexible loop closures need MuJoCo's own inverse-inertia estimate (dA): loaded once, then written.
+void Lowering::soften_equalities(Element& root) {
+  if (soft_equalities_.empty() || sink_.has_errors()) return;
+  const SoftEqualityResult r =
+      apply_soft_equalities(root, soft_equalities_, options_.output_dir, options_.timestep);
+  if (!r.error.empty()) {
+    warn({}, "flexible loop closures kept MuJoCo's default softness: the draft model did not load (" +
+                 r.error + ")");
+  }
+  for (const std::string& e : r.unstable) {
+    warn({}, "equality " + e + " is stiffer than explicit integration at " + number(options_.timestep) +
+                 " s resolves (h sqrt(k/m) > 1); it may oscillate");
+  }
+}
+
+// A drivetrain as MuJoCo joints and constraints: every shaft is a rotor body spinning about z at the world
+// origin (no geometry, its inertia about the axis), hinge/prismatic actuators tie a shaft's angle to the
+// mate's joint and gears tie two shafts with joint equalities (MuJoCo measures both from their initial
+// values), a differential ties its three shafts with a fixed tendon held at its initial length:
+// w_drive = gear_ratio (w_left + w_right) / 2. Gears: ratio = input speed / output speed (UNCONFIRMED for
+// AGX; the corpus only uses -1, where both readings agree).
+// Joints that follow another (URDF mimic): a joint equality, follower = offset + multiplier * leader
+// (MuJoCo measures both from the initial configuration).
+void Lowering::emit_joint_couplings(Element& root) {
+  Element* equality = root.child("equality");
+  for (const sn::JointCoupling& c : view_.joint_couplings) {
+    auto joint = [&](int mate) -> Element* {
+      if (mate < 0 || !tree_mates_.count(mate)) return nullptr;
+      return joint_for(mate, view_.mates[mate].type != sn::MateType::Prismatic);
+    };
+    Element* follower = joint(c.follower);
+    Element* leader = joint(c.leader);
+    if (!follower || !leader || follower == leader) {
+      warn(c.where, "`" + c.path +
+                        "` does not couple two hinge or prismatic joints of MuJoCo's tree; it was "
+                        "left out");
+      continue;
+    }
+    equality->add("joint")
+        .set("name", name(c.path))
+        .set("joint1", *follower->get("name"))
+        .set("joint2", *leader->get("name"))
+        .set("polycoef", number(c.offset) + " " + number(c.multiplier) + " 0 0 0");
+  }
+}
+
+}  // namespace openplx::mjcf

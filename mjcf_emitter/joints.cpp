@@ -1,0 +1,109 @@
+// Lowering pass, joints: the <joint>s of tree mates at their connectors, friction, URDF damping and friction.
+#include "mjcf_emitter/lowering.h"
+
+namespace openplx::mjcf {
+
+void Lowering::emit_joints(Element& body, int node, int m) {
+  const sn::Mate& mate = view_.mates[m];
+  warn_mate_softness(mate, false);
+  if (mate.type == sn::MateType::Lock) return;  // a rigid child: no joint
+  const int side = vertex_of_connector(mate.connectors[1]) == node ? 1 : 0;
+  const sn::Connector& c = view_.connectors[mate.connectors[side]];
+  // The connector in the body frame (its owner is this body).
+  const Eigen::Vector3d pos = c.local.position;
+  // connectors[1] relative to connectors[0] about +main_axis: on side 0 the body turns the other way.
+  const Eigen::Vector3d axis = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitZ());
+  auto joint = [&](const char* type, const std::string& suffix, double ref) {
+    Element& j = body.add("joint");
+    j.set("name", name(mate.path) + suffix).set("type", type).set("pos", pos);
+    if (std::string(type) != "ball") j.set("axis", axis);
+    if (ref != 0.0) j.set("ref", ref);
+    joint_of_mate_[m].push_back(&j);
+    joint_info_[&j] = {node, pos, axis.normalized(), std::string(type) == "hinge"};
+    return &j;
+  };
+  switch (mate.type) {
+    case sn::MateType::Hinge:
+      apply_friction(*joint("hinge", "", mate.initial_angle), mate, mate.friction, "friction");
+      break;
+    case sn::MateType::Prismatic:
+      apply_friction(*joint("slide", "", mate.initial_position), mate, mate.friction, "friction");
+      break;
+    case sn::MateType::Cylindrical:
+      apply_friction(*joint("slide", ".slide", mate.initial_position), mate, mate.friction_translational,
+                     "friction_translational");
+      apply_friction(*joint("hinge", ".hinge", mate.initial_angle), mate, mate.friction_rotational,
+                     "friction_rotational");
+      break;
+    case sn::MateType::Ball:
+      joint("ball", "", 0.0);
+      break;
+    default:
+      break;
+  }
+}
+
+// Flexibility and dissipation of a mate's constrained degrees of freedom: tree joints are exactly rigid in
+// MuJoCo and equalities take MuJoCo's default softness, so a non-default model is reported, not dropped.
+void Lowering::warn_mate_softness(const sn::Mate& mate, bool loop) {
+  for (const auto& [attribute, type] :
+       {std::pair<const char*, const std::string&>{"flexibility", mate.flexibility_type},
+        {"dissipation", mate.dissipation_type}}) {
+    if (type.empty() || type.find(".Default") != std::string::npos) continue;
+    warn(mate.where, "`" + mate.path + "." + attribute + "` (" + type +
+                         ") has no MuJoCo 2.2.2 mapping here; " +
+                         (loop ? "the loop-closing equality keeps MuJoCo's default softness"
+                               : "the joint's constrained directions are rigid"));
+  }
+}
+
+// Dry friction of a mate's free degree of freedom. MuJoCo's joint friction is a constant limit
+// (`frictionloss`), so only a friction given a constant normal force maps: limit = coefficient x normal
+// force (N for slides; read as N m for hinges, UNCONFIRMED). Friction that scales with the constraint force
+// has no 2.2.2 counterpart and is warned.
+void Lowering::apply_friction(Element& joint, const sn::Mate& mate, const sn::MateFriction& friction,
+                              const char* attribute) {
+  const std::string& type = friction.type;
+  if (type.empty() || type == "Physics.Interactions.Dissipation.DefaultFriction") return;
+  if (type == "Physics.Interactions.Dissipation.DryConstantNormalForceFriction") {
+    const double limit = friction.coefficient * friction.normal_force;
+    if (limit > 0) joint.set("frictionloss", limit);
+    return;
+  }
+  warn(mate.where,
+       "`" + mate.path + "." + attribute + "` (" + type +
+           ") depends on the constraint force, which MuJoCo 2.2.2 joint friction cannot; the joint "
+           "was emitted without friction");
+}
+
+Element* Lowering::joint_for(int mate, bool rotational) {
+  auto it = joint_of_mate_.find(mate);
+  if (it == joint_of_mate_.end()) return nullptr;
+  for (Element* j : it->second) {
+    const bool hinge = *j->get("type") == "hinge";
+    if (hinge == rotational && *j->get("type") != "ball") return j;
+  }
+  return nullptr;
+}
+
+// URDF <dynamics>: damping adds to the springs' own; friction becomes frictionloss (a constant Coulomb
+// friction is exactly what MuJoCo's joint friction is), added to a mate friction already there.
+void Lowering::apply_joint_properties(std::map<Element*, double>& dampings) {
+  for (const sn::JointProperties& p : view_.joint_properties) {
+    if (p.mate < 0 || !tree_mates_.count(p.mate)) {
+      if (p.damping > 0 || p.friction > 0)
+        warn(p.where, "`" + p.path + "` (URDF dynamics) is on a mate that closes a loop or joins nothing; " +
+                          "MuJoCo's equality constraints have no damping or friction, so it was left out");
+      continue;
+    }
+    Element* joint = joint_for(p.mate, view_.mates[p.mate].type != sn::MateType::Prismatic);
+    if (!joint) continue;  // a Lock: nothing moves
+    if (p.damping > 0) dampings[joint] += p.damping;
+    if (p.friction > 0) {
+      const std::string* had = joint->get("frictionloss");
+      joint->set("frictionloss", p.friction + (had ? std::stod(*had) : 0.0));
+    }
+  }
+}
+
+}  // namespace openplx::mjcf

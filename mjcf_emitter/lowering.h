@@ -1,0 +1,215 @@
+// The MJCF emitter's shared state, internal to mjcf_emitter/: one Lowering object runs the passes in order
+// (run, in emitter.cpp). Each pass lives in its own file and writes one MJCF concern; later passes
+// read what earlier ones recorded (the tree, the elements of bodies and joints, the actuators). Inputs are
+// only the resolved system, the options and the diagnostic sink. See README.md for which file writes which
+// element.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "mjcf_emitter/emitter.h"
+#include "mjcf_emitter/mass_properties.h"
+#include "mjcf_emitter/soft_constraints.h"
+
+namespace openplx::mjcf {
+
+namespace fe = openplx::frontend;
+namespace sn = openplx::snap;
+
+inline constexpr int kWorldVertex = -1;
+
+struct TreeEdge {
+  int mate = -1;              // -1: a free joint or a static body
+  int parent = kWorldVertex;  // node index of the parent body, or the world
+};
+
+class Lowering {
+ public:
+  Lowering(const sn::ResolvedSystem& view, const EmitOptions& options, fe::DiagnosticSink& sink)
+      : view_(view), snap_(view.assembly), options_(options), sink_(sink) {}
+
+  Emitted run();
+
+ private:
+  // ------------------------------------------------------------------------------------------ helpers
+  std::string name(const std::string& path) const {
+    return options_.prefix + (path.empty() ? options_.model_name : path);
+  }
+  bool is_body(int node) const { return node >= 0 && view_.nodes[node].kind == sn::FrameNode::Kind::Body; }
+  bool is_static(int node) const { return is_body(node) && !view_.nodes[node].body.dynamic; }
+  // The graph vertex a connector hangs on: its body, or the world for system connectors and World.
+  int vertex_of_connector(int connector) const {
+    const int owner = view_.connectors[connector].owner;
+    return is_body(owner) ? owner : kWorldVertex;
+  }
+  void warn(fe::SourceRange where, const std::string& message) {
+    sink_.report(fe::DiagCode::MjcfUnmapped, where, message);
+  }
+  static void drop_empty(Element& root, std::string_view section) {
+    auto& kids = root.children();
+    kids.erase(std::remove_if(kids.begin(), kids.end(),
+                              [&](const std::unique_ptr<Element>& e) {
+                                return e->name() == section && e->children().empty();
+                              }),
+               kids.end());
+  }
+  // The index of an element of `items` held by reference.
+  template <typename T>
+  static int index_in(const std::vector<T>& items, const T& item) {
+    return static_cast<int>(&item - items.data());
+  }
+  static SignalBinding unmapped(SignalBinding b, std::string reason) {
+    b.quantity = Quantity::None;
+    b.reason = std::move(reason);
+    return b;
+  }
+  static SignalBinding mapped(SignalBinding b, Quantity quantity, MjObject object, std::string element) {
+    b.quantity = quantity;
+    b.object = object;
+    b.names = {std::move(element)};
+    return b;
+  }
+  static bool any_of(std::string_view stem, std::initializer_list<std::string_view> stems) {
+    return std::find(stems.begin(), stems.end(), stem) != stems.end();
+  }
+
+  // ------------------------------------------------------------------------- emitter.cpp
+  Eigen::Vector3d gravity();
+
+  // ------------------------------------------------------------------------------ tree_choice.cpp
+  static int edge_cost(const sn::Mate& mate, bool carries_interactions);
+  bool joint_mapped(const sn::Mate& mate) const;
+  void choose_tree();
+
+  // ----------------------------------------------------------------------------------- bodies.cpp
+  void emit_world_geoms(Element& world);
+  void emit_bodies(Element& world);
+  Element& emit_body(Element& parent, int node);
+  const std::vector<const sn::Geometry*>& geometries_of(int node);
+  double density_of(const sn::Geometry& g);
+  void emit_inertial(Element& body, int node);
+  void emit_geom(Element& parent, const sn::Geometry& g, const sn::Transform& pose, bool on_static);
+
+  // ----------------------------------------------------------------------------------- joints.cpp
+  void emit_joints(Element& body, int node, int m);
+  void warn_mate_softness(const sn::Mate& mate, bool loop);
+  void apply_friction(Element& joint, const sn::Mate& mate, const sn::MateFriction& friction,
+                      const char* attribute);
+  Element* joint_for(int mate, bool rotational);
+  void apply_joint_properties(std::map<Element*, double>& dampings);
+
+  // ------------------------------------------------------------------------------- equalities.cpp
+  void emit_loop_closures(Element& root);
+  std::optional<MateCompliance> compliance(const sn::Mate& mate);
+  void soften_equalities(Element& root);
+  void emit_joint_couplings(Element& root);
+
+  // ----------------------------------------------------------------------------------- assets.cpp
+  void emit_visual_materials();
+  std::string vertex_mesh_asset(const sn::Geometry& g);
+  std::string mesh_asset(const sn::Geometry& g);
+
+  // --------------------------------------------------------------------------------- keyframe.cpp
+  void emit_initial_velocities(Element& root);
+
+  // --------------------------------------------------------------------------------- contacts.cpp
+  void emit_contact_pairs(Element& root);
+  void emit_collision_filters(Element& root);
+  std::set<std::string> group_bodies(const sn::CollisionGroup& group, std::vector<std::string>& widened);
+  std::string mujoco_body(int n);
+
+  // -------------------------------------------------------------------------------- actuators.cpp
+  void emit_actuators(Element& root);
+  double spring_damping(const sn::Interaction1D& i, double k);
+  double velocity_gain(double gain, Element& joint, const sn::Interaction1D& motor);
+  void note_capped_gain(const sn::Interaction1D& motor, double gain, double stable);
+  double effective_inertia(Element& joint);
+  void effort_limits(Element& actuator, const sn::Interaction1D& i);
+  void speed_limit(Element& actuator, const sn::Interaction1D& i);
+
+  // ------------------------------------------------------------------------------- drivetrain.cpp
+  void emit_drivetrain(Element& root);
+  void emit_shaft_motor(Element& actuators, const sn::Interaction1D& i);
+  double drivetrain_inertia(int start);
+
+  // ---------------------------------------------------------------------------------- signals.cpp
+  void bind_signals(Element& root, std::vector<SignalBinding>& out);
+  SignalBinding bind(const sn::Signal& s);
+  SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
+  SignalBinding bind_mate(SignalBinding b, std::string_view stem, int m);
+  SignalBinding bind_body(SignalBinding b, std::string_view stem, int n);
+  SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c);
+  std::string site_for(int c);
+  void add_sensor(SignalBinding& b);
+
+  // -------------------------------------------------------------------------------------------- state
+  struct Adjacent {
+    int mate;
+    int a;
+    int b;
+    int cost;
+  };
+
+  const sn::ResolvedSystem& view_;
+  const sn::SnapResult& snap_;
+  const EmitOptions& options_;
+  fe::DiagnosticSink& sink_;
+  std::vector<Adjacent> adjacency_;
+  std::vector<TreeEdge> edges_;
+  std::vector<bool> in_tree_;
+  std::set<int> tree_mates_;
+  std::set<int> free_roots_;
+  std::vector<int> initial_velocities_;  // free bodies that start moving
+  std::map<int, Element*> body_element_;
+  std::map<int, std::vector<Element*>> joint_of_mate_;
+  std::map<int, double> mass_on_geoms_;
+  struct JointInfo {
+    int node;
+    Eigen::Vector3d pos;   // in the child body frame
+    Eigen::Vector3d axis;  // unit, in the child body frame
+    bool rotational;
+  };
+  std::map<Element*, JointInfo> joint_info_;
+  std::map<int, MassProperties> body_mass_;
+  std::map<int, std::vector<int>> tree_children_;
+  std::map<Element*, int> velocity_motors_;
+  std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
+  std::set<std::string> emitted_geoms_;
+  std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;
+  std::map<int, std::pair<int, double>> actuator_ctrl_;  // motor interaction -> actuator index, initial ctrl
+  size_t actuator_count_ = 0;
+  Element* assets_ = nullptr;
+  struct DriveEdge {
+    int from;        // shaft
+    int to;          // shaft, -1 for an actuator
+    double factor;   // speed of `to` per unit speed of `from`
+    Element* joint;  // an actuator's 3-D joint
+  };
+  std::vector<DriveEdge> drive_edges_;
+  std::vector<PendingSoftEquality> soft_equalities_;
+  std::vector<std::string> shaft_joints_;  // per shaft: its MuJoCo joint
+  Element* world_ = nullptr;
+  Element* sensors_ = nullptr;
+  std::set<int> mocap_;
+  std::set<int> sites_;                                         // connectors that have a site
+  std::map<int, int> child_of_mate_;                            // tree mate -> the body whose joint it is
+  std::map<int, std::vector<std::string>> equalities_of_mate_;  // loop mate -> its equality names
+  struct SpringInfo {
+    std::string joint;
+    double stiffness;
+    double rest;
+    double joint_rest;  // the rest of all springs on the joint (stiffness-weighted)
+  };
+  std::map<int, SpringInfo> springs_;        // by interaction
+  std::map<int, std::string> range_joints_;  // by interaction
+};
+
+}  // namespace openplx::mjcf

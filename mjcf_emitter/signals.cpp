@@ -1,0 +1,260 @@
+// Lowering pass, signals: one binding per OpenPLX signal, <sensor>s for enabled outputs, <site>s at mate
+// connectors.
+#include "mjcf_emitter/lowering.h"
+
+namespace openplx::mjcf {
+
+// One binding per OpenPLX signal (signal_binding.h), and a MuJoCo sensor for every enabled output that
+// has one. Outputs without a sensor (controls, ranges, constants) are computed by the runtime.
+void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
+  sensors_ = &root.add("sensor");
+  for (const sn::Signal& s : view_.signals) {
+    SignalBinding b = bind(s);
+    if (!b.input && b.enabled && b.quantity == Quantity::None) {
+      warn(s.where, "output `" + s.path + "` (" + s.type + ") has no MuJoCo counterpart: " + b.reason +
+                        "; it was left out");
+    }
+    if (!b.input && b.enabled) add_sensor(b);
+    out.push_back(std::move(b));
+  }
+}
+
+SignalBinding Lowering::bind(const sn::Signal& s) {
+  SignalBinding b;
+  b.path = s.path;
+  b.input = s.input;
+  b.type = s.type;
+  b.enabled = s.enabled;
+  const SignalKind kind = signal_kind(s.type);
+  b.value = kind.value;
+  b.unit = kind.unit;
+  const std::string_view stem = signal_stem(s.type);
+  using Source = sn::SignalSource;
+  switch (s.source_kind) {
+    case Source::None:
+      return unmapped(std::move(b), "it has no source");
+    case Source::Interaction:
+      return bind_interaction(std::move(b), stem, s.source);
+    case Source::Mate:
+      return bind_mate(std::move(b), stem, s.source);
+    case Source::Body:
+      return bind_body(std::move(b), stem, s.source);
+    case Source::Shaft:
+      if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D"})) {
+        return mapped(std::move(b), stem == "Angle" ? Quantity::JointPosition : Quantity::JointVelocity,
+                      MjObject::Joint, shaft_joints_[s.source]);
+      }
+      break;
+    case Source::Connector:
+      return bind_connector(std::move(b), stem, s.source);
+    case Source::Other:
+      break;
+  }
+  return unmapped(std::move(b),
+                  "its source `" +
+                      (s.source_kind == Source::Shaft ? view_.shafts[s.source].path : s.source_path) +
+                      "` has no MuJoCo element");
+}
+
+SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem, int k) {
+  const sn::Interaction1D& i = view_.interactions[k];
+  if (auto a = actuator_ctrl_.find(k); a != actuator_ctrl_.end()) {  // a motor
+    const std::string actuator = name(i.path);
+    if (any_of(stem, {"TorqueRange", "ForceRange"}))
+      return mapped(std::move(b), Quantity::ForceRange, MjObject::Actuator, actuator);
+    const bool effort = any_of(stem, {"Torque1D", "Force1D"});
+    const bool target = b.input || !effort;  // an effort motor's input, a velocity motor's target
+    if (effort && !b.input)
+      return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, actuator);
+    if (target && any_of(stem, {"Torque1D", "Force1D", "AngularVelocity1D", "LinearVelocity1D"})) {
+      b.initial = a->second.second;
+      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, actuator);
+    }
+  }
+  if (auto sp = springs_.find(k); sp != springs_.end()) {
+    const SpringInfo& spring = sp->second;
+    if (any_of(stem, {"Angle", "Position1D"})) {
+      b.initial = spring.joint_rest;
+      return mapped(std::move(b), Quantity::SpringRest, MjObject::Joint, spring.joint);
+    }
+    if (!b.input && any_of(stem, {"Torque1D", "Force1D"})) {
+      b.gain = -spring.stiffness;
+      b.offset = spring.rest;
+      return mapped(std::move(b), Quantity::SpringForce, MjObject::Joint, spring.joint);
+    }
+  }
+  if (auto r = range_joints_.find(k); r != range_joints_.end() && !b.input) {
+    if (any_of(stem, {"Angle", "Position1D"}))
+      return mapped(std::move(b), Quantity::JointPosition, MjObject::Joint, r->second);
+    if (any_of(stem, {"Torque1D", "Force1D"}))
+      return mapped(std::move(b), Quantity::JointLimitForce, MjObject::Joint, r->second);
+  }
+  return unmapped(std::move(b), "`" + i.path + "` has no MuJoCo element that carries it");
+}
+
+SignalBinding Lowering::bind_mate(SignalBinding b, std::string_view stem, int m) {
+  const sn::Mate& mate = view_.mates[m];
+  const bool tree = tree_mates_.count(m) > 0;
+  if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {
+    if (auto e = equalities_of_mate_.find(m); e != equalities_of_mate_.end()) {
+      b = mapped(std::move(b), Quantity::EqualityActive, MjObject::Equality, "");
+      b.names = e->second;
+      return b;
+    }
+    if (!tree) return unmapped(std::move(b), "`" + mate.path + "` was left out of the MJCF");
+    if (b.input) {
+      return unmapped(std::move(b),
+                      "`" + mate.path + "` is a joint of MuJoCo's body tree, which cannot be switched off");
+    }
+    b.quantity = Quantity::Constant;
+    b.initial = 1.0;
+    return b;
+  }
+  if (!tree) {
+    return unmapped(std::move(b), "`" + mate.path +
+                                      "` closes a kinematic loop as an equality constraint, which has no "
+                                      "joint coordinate or force sensor");
+  }
+  if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D", "Position1D", "LinearVelocity1D"})) {
+    const bool rotational = any_of(stem, {"Angle", "AngularVelocity1D"});
+    Element* joint = joint_for(m, rotational);
+    if (!joint) {
+      return unmapped(std::move(b), "`" + mate.path + "` has no " + (rotational ? "rotational" : "linear") +
+                                        " joint coordinate");
+    }
+    const bool position = any_of(stem, {"Angle", "Position1D"});
+    return mapped(std::move(b), position ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint,
+                  *joint->get("name"));
+  }
+  if (!b.input && any_of(stem, {"Force3D", "Torque3D"})) {
+    auto found = child_of_mate_.find(m);
+    if (found == child_of_mate_.end()) return unmapped(std::move(b), "`" + mate.path + "` was not emitted");
+    const int child = found->second;
+    const int side = vertex_of_connector(mate.connectors[1]) == child ? 1 : 0;
+    b = mapped(std::move(b), stem == "Force3D" ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
+               site_for(mate.connectors[side]));
+    b.sign = side == 1 ? 1.0 : -1.0;
+    return b;
+  }
+  return unmapped(std::move(b), "`" + mate.path + "` has no MuJoCo element that carries it");
+}
+
+SignalBinding Lowering::bind_body(SignalBinding b, std::string_view stem, int n) {
+  const std::string body = name(view_.nodes[n].path);
+  if (!body_element_.count(n)) return unmapped(std::move(b), "`" + view_.nodes[n].path + "` was not emitted");
+  if (b.input) {
+    const bool linear = stem == "LinearVelocity3D";
+    if (!linear && stem != "AngularVelocity3D") return unmapped(std::move(b), "no MuJoCo input of a body");
+    if (mocap_.count(n)) {
+      return mapped(std::move(b),
+                    linear ? Quantity::KinematicLinearVelocity : Quantity::KinematicAngularVelocity,
+                    MjObject::Body, body);
+    }
+    if (free_roots_.count(n)) {
+      return mapped(std::move(b), linear ? Quantity::FreeLinearVelocity : Quantity::FreeAngularVelocity,
+                    MjObject::Joint, body);
+    }
+    return unmapped(std::move(b), "`" + view_.nodes[n].path +
+                                      "` moves through its joints in MuJoCo; its velocity cannot be set");
+  }
+  const Quantity q = stem == "Position3D" || stem == "Position" ? Quantity::BodyPosition
+                     : stem == "RPY"                            ? Quantity::BodyRPY
+                     : stem == "LinearVelocity3D"               ? Quantity::BodyLinearVelocity
+                     : stem == "AngularVelocity3D"              ? Quantity::BodyAngularVelocity
+                     : stem == "Acceleration3D"                 ? Quantity::BodyLinearAcceleration
+                                                                : Quantity::None;
+  if (q == Quantity::None) return unmapped(std::move(b), "no MuJoCo quantity of a body matches it");
+  return mapped(std::move(b), q, MjObject::Body, body);
+}
+
+SignalBinding Lowering::bind_connector(SignalBinding b, std::string_view stem, int c) {
+  const Quantity q = b.input                       ? Quantity::None
+                     : stem == "Position3D"        ? Quantity::SitePosition
+                     : stem == "RPY"               ? Quantity::SiteRPY
+                     : stem == "LinearVelocity3D"  ? Quantity::SiteLinearVelocity
+                     : stem == "AngularVelocity3D" ? Quantity::SiteAngularVelocity
+                                                   : Quantity::None;
+  if (q == Quantity::None) return unmapped(std::move(b), "no MuJoCo quantity of a mate connector matches it");
+  return mapped(std::move(b), q, MjObject::Site, site_for(c));
+}
+
+// A site at a mate connector, in the MuJoCo body that carries it (the world for system connectors).
+std::string Lowering::site_for(int c) {
+  const sn::Connector& connector = view_.connectors[c];
+  const std::string site = name(connector.path);
+  if (!sites_.insert(c).second) return site;
+  const int owner = vertex_of_connector(c);
+  auto body = body_element_.find(owner);
+  Element& parent = owner >= 0 && body != body_element_.end() ? *body->second : *world_;
+  const sn::Transform frame = owner >= 0 ? connector.local : snap_.connector_world[c];
+  parent.add("site").set("name", site).set("pos", frame.position).set_quat("quat", frame.rotation);
+  return site;
+}
+
+void Lowering::add_sensor(SignalBinding& b) {
+  struct Sensor {
+    const char* element;
+    const char* objtype;  // frame sensors; nullptr: the element names its object by attribute
+    const char* attribute;
+  };
+  Sensor sensor{};
+  switch (b.quantity) {
+    case Quantity::JointPosition:
+      sensor = {"jointpos", nullptr, "joint"};
+      break;
+    case Quantity::JointVelocity:
+      sensor = {"jointvel", nullptr, "joint"};
+      break;
+    case Quantity::JointLimitForce:
+      sensor = {"jointlimitfrc", nullptr, "joint"};
+      break;
+    case Quantity::ActuatorForce:
+      sensor = {"actuatorfrc", nullptr, "actuator"};
+      break;
+    case Quantity::MateForce:
+      sensor = {"force", nullptr, "site"};
+      break;
+    case Quantity::MateTorque:
+      sensor = {"torque", nullptr, "site"};
+      break;
+    case Quantity::BodyPosition:
+      sensor = {"framepos", "xbody", nullptr};
+      break;
+    case Quantity::BodyRPY:
+      sensor = {"framequat", "xbody", nullptr};
+      break;  // the runtime gives RPY
+    case Quantity::BodyLinearVelocity:
+      sensor = {"framelinvel", "xbody", nullptr};
+      break;
+    case Quantity::BodyAngularVelocity:
+      sensor = {"frameangvel", "xbody", nullptr};
+      break;
+    case Quantity::BodyLinearAcceleration:
+      sensor = {"framelinacc", "xbody", nullptr};
+      break;
+    case Quantity::SitePosition:
+      sensor = {"framepos", "site", nullptr};
+      break;
+    case Quantity::SiteRPY:
+      sensor = {"framequat", "site", nullptr};
+      break;
+    case Quantity::SiteLinearVelocity:
+      sensor = {"framelinvel", "site", nullptr};
+      break;
+    case Quantity::SiteAngularVelocity:
+      sensor = {"frameangvel", "site", nullptr};
+      break;
+    default:
+      return;  // computed by the runtime
+  }
+  Element& e = sensors_->add(sensor.element);
+  e.set("name", name(b.path));
+  if (sensor.objtype) {
+    e.set("objtype", sensor.objtype).set("objname", b.names.front());
+  } else {
+    e.set(sensor.attribute, b.names.front());
+  }
+  b.sensor = name(b.path);
+}
+
+}  // namespace openplx::mjcf

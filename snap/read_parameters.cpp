@@ -1,0 +1,135 @@
+#include "snap/read_parameters.h"
+
+#include "snap/resolve_system.h"
+
+namespace openplx::snap {
+
+namespace fe = openplx::frontend;
+
+namespace {
+
+Damping read_damping(AttributeReader& in, fe::ObjectId dissipation) {
+  Damping d;
+  if (dissipation == fe::kNoObject) return d;
+  d.given = true;
+  d.damping_constant = in.number(dissipation, "damping_constant");
+  d.relaxation_time = in.number(dissipation, "relaxation_time");
+  return d;
+}
+
+MateFriction read_friction(AttributeReader& in, fe::ObjectId mate, const char* attribute) {
+  MateFriction f;
+  const fe::ObjectId friction = in.object(mate, attribute);
+  if (friction == fe::kNoObject) return f;
+  f.type = in.type_name(friction);
+  f.coefficient = in.real(friction, "coefficient");
+  f.normal_force = in.real(friction, "normal_force");
+  return f;
+}
+
+}  // namespace
+
+void read_mate_parameters(AttributeReader& in, fe::ObjectId id, Mate& mate) {
+  mate.enabled = in.boolean(id, "enabled").value_or(true);
+  const fe::ObjectId flexibility = in.object(id, "flexibility");
+  const fe::ObjectId dissipation = in.object(id, "dissipation");
+  if (flexibility != fe::kNoObject) {
+    mate.flexible = true;
+    mate.flexibility_type = in.type_name(flexibility);
+  }
+  if (dissipation != fe::kNoObject) mate.dissipation_type = in.type_name(dissipation);
+  for (size_t k = 0; k < mate.dofs.size(); ++k) {
+    DofCompliance& dof = mate.dofs[k];
+    const char* direction = Mate::kDirections[k];
+    if (flexibility != fe::kNoObject) {
+      if (const fe::ObjectId elastic = in.object(flexibility, direction); elastic != fe::kNoObject)
+        dof.stiffness = in.real(elastic, "stiffness");
+    }
+    if (dissipation != fe::kNoObject) {
+      if (const fe::ObjectId d = in.object(dissipation, direction); d != fe::kNoObject) {
+        dof.damping_constant = in.number(d, "damping_constant");
+        dof.relaxation_time = in.number(d, "relaxation_time");
+      }
+    }
+  }
+  mate.friction = read_friction(in, id, "friction");
+  mate.friction_translational = read_friction(in, id, "friction_translational");
+  mate.friction_rotational = read_friction(in, id, "friction_rotational");
+}
+
+void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interaction1D& i) {
+  using K = Interaction1D::Kind;
+  i.enabled = in.boolean(id, "enabled").value_or(true);
+  switch (i.kind) {
+    case K::LinearRange:
+    case K::RotationalRange:
+      i.start = in.real(id, "start");
+      i.end = in.real(id, "end");
+      break;
+    case K::LinearSpring:
+    case K::TorsionSpring:
+      if (const fe::ObjectId flexibility = in.object(id, "flexibility"); flexibility != fe::kNoObject)
+        i.stiffness = in.real(flexibility, "stiffness");
+      i.rest = in.real(id, i.kind == K::LinearSpring ? "position" : "angle");
+      i.damping = read_damping(in, in.object(id, "dissipation"));
+      break;
+    case K::LinearVelocityMotor:
+    case K::RotationalVelocityMotor:
+      i.gain = in.number(id, "gain");
+      i.target_speed = in.number(id, "target_speed");
+      break;
+    case K::ForceMotor:
+    case K::TorqueMotor:
+      i.default_effort = in.real(id, i.kind == K::ForceMotor ? "default_force" : "default_torque");
+      break;
+    case K::Other:
+      return;
+  }
+  i.min_effort = in.real(id, "min_effort", -kInf);
+  i.max_effort = in.real(id, "max_effort", kInf);
+}
+
+VisualMaterial read_visual_material(AttributeReader& in, fe::ObjectId id) {
+  VisualMaterial m;
+  m.object = id;
+  m.path = in.graph().path(id);
+  m.where = source_of(in.graph(), id);
+  if (const fe::ObjectId tint = in.object(id, "base_color_tint"); tint != fe::kNoObject)
+    m.tint = Eigen::Vector4d(in.real(tint, "r", 1), in.real(tint, "g", 1), in.real(tint, "b", 1),
+                             in.real(tint, "a", 1));
+  m.roughness = in.number(id, "roughness");
+  m.metallic = in.number(id, "metallic");
+  for (const char* map : {"base_color_map", "roughness_map", "metallic_map", "alpha_map",
+                          "ambient_occlusion_map", "normal_map"}) {
+    const fe::ObjectId texture = in.object(id, map);
+    const fe::ObjectId data = texture == fe::kNoObject ? fe::kNoObject : in.object(texture, "data");
+    if (data != fe::kNoObject && in.real(data, "width") > 0 && in.real(data, "height") > 0)
+      m.inline_textures.push_back({map, source_of(in.graph(), texture)});
+  }
+  return m;
+}
+
+void read_contact_parameters(AttributeReader& in, fe::ObjectId id, ContactModel& model) {
+  model.enabled = in.boolean(id, "enabled").value_or(true);
+  if (const fe::ObjectId friction = in.object(id, "friction"); friction != fe::kNoObject)
+    model.friction = in.real(friction, "coefficient", 1.0);
+  model.normal_restitution = in.real(id, "normal_restitution");
+  model.tangential_restitution = in.real(id, "tangential_restitution");
+}
+
+Gravity read_gravity(AttributeReader& in, fe::ObjectId root) {
+  Gravity g;
+  if (root == fe::kNoObject) return g;
+  const fe::ObjectId field = in.object(root, "gravity");
+  if (field == fe::kNoObject) return g;
+  const fe::ObjectId vector = in.object(field, "vector");
+  if (vector == fe::kNoObject) {
+    g.kind = Gravity::Kind::NonUniform;
+    return g;
+  }
+  g.kind = Gravity::Kind::Uniform;
+  g.vector = {in.real(vector, "x"), in.real(vector, "y"), in.real(vector, "z")};
+  return g;
+}
+
+}  // namespace openplx::snap

@@ -1,0 +1,25 @@
+// The numbers and flags of mates, 1-DOF interactions, materials, contact models and the environment, read
+// once into the resolved system (the structural walk is in resolve_system.cpp).
+#pragma once
+
+#include "snap/attribute_reader.h"
+#include "snap/resolved_system.h"
+
+namespace openplx::snap {
+
+// enabled, flexibility and dissipation per direction, friction of the free degrees of freedom.
+void read_mate_parameters(AttributeReader& in, frontend::ObjectId id, Mate& mate);
+
+// Ranges, springs and motors: what each kind's mapping reads (call after its kind is final).
+void read_interaction_parameters(AttributeReader& in, frontend::ObjectId id, Interaction1D& interaction);
+
+// A Visuals.Materials.Material: tint, roughness, metallic, and which texture maps carry inline pixels.
+VisualMaterial read_visual_material(AttributeReader& in, frontend::ObjectId id);
+
+// A SurfaceContact model's enabled flag, friction coefficient and restitutions (materials are the caller's).
+void read_contact_parameters(AttributeReader& in, frontend::ObjectId id, ContactModel& model);
+
+// The root's Simulation gravity field.
+Gravity read_gravity(AttributeReader& in, frontend::ObjectId root);
+
+}  // namespace openplx::snap
