@@ -473,7 +473,7 @@ class SystemBuilder {
   int material_index(fe::ObjectId id) {
     if (id == fe::kNoObject) return -1;
     auto [it, fresh] = material_of_.try_emplace(id, static_cast<int>(view_.materials.size()));
-    if (fresh) view_.materials.push_back({id, in_.real(id, "density", 1000.0)});
+    if (fresh) view_.materials.push_back({id, in_.real(id, "density", 1000.0), where_of(id)});
     return it->second;
   }
 

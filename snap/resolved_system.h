@@ -81,6 +81,7 @@ struct Geometry {
 struct Material {
   ObjectRef object;
   double density = 1000.0;  // kg/m^3; 1000 when the material gives none
+  frontend::SourceRange where;
 };
 
 // An inline texture map of a visual material (pixels in the model, not an image file).
