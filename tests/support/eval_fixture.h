@@ -1,4 +1,4 @@
-// Test support: write OpenPLX files into a fresh temporary folder, load one with the project's bundles,
+// Test support: write OpenPLX files into the test's own scratch folder, load one with the project's bundles,
 // instantiate its root model and evaluate every attribute; then read values by path. Diagnostics must be
 // claimed as in ParseTest.
 #pragma once
@@ -18,23 +18,16 @@
 #include "frontend/program.h"
 #include "frontend/value_format.h"
 #include "tests/support/parse_fixture.h"
+#include "tests/support/scratch_dir.h"
 
 namespace openplx::testing {
 
 class EvalTest : public DiagnosticTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("openplx_eval_") + info->test_suite_name() + "_" + info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
   void TearDown() override {
     DiagnosticTest::TearDown();
     evaluator_.reset();
     program_.reset();
-    std::filesystem::remove_all(dir_);
   }
 
   // Writes `text` to `relative` under the test folder; returns the absolute path.
@@ -101,7 +94,8 @@ class EvalTest : public DiagnosticTest {
   }
   std::string dir() const { return dir_.generic_string(); }
 
-  std::filesystem::path dir_;
+  ScratchDir scratch_;  // removed with the fixture, after TearDown
+  std::filesystem::path dir_ = scratch_.path();
   std::unique_ptr<fe::Program> program_;
   std::unique_ptr<fe::Evaluator> evaluator_;
   fe::ObjectId root_ = fe::kNoObject;

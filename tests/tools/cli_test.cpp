@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/scratch_dir.h"
+
 namespace fs = std::filesystem;
 namespace cli = openplx::cli;
 
@@ -16,15 +18,6 @@ namespace {
 
 class Cli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() /
-        ("openplx_cli_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string write(const std::string& name, const std::string& text) {
     fs::path path = dir_ / name;
     std::ofstream(path, std::ios::binary) << text;
@@ -42,7 +35,8 @@ class Cli : public ::testing::Test {
     return cli::run(args, out_, err_);
   }
 
-  fs::path dir_;
+  openplx::testing::ScratchDir scratch_;
+  fs::path dir_ = scratch_.path();
   std::ostringstream out_;
   std::ostringstream err_;
 };

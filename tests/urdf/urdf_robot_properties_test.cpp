@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "openplx/runtime/simulation.h"
+#include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
 namespace {
@@ -64,14 +65,7 @@ void write_tetrahedron(const fs::path& path) {
 
 class UrdfRobotProperties : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("openplx_urdf_properties_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    write_tetrahedron(dir_ / "packages" / "my_pkg" / "meshes" / "tetra.stl");
-  }
+  void SetUp() override { write_tetrahedron(dir_ / "packages" / "my_pkg" / "meshes" / "tetra.stl"); }
   fs::path write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;
@@ -90,7 +84,8 @@ class UrdfRobotProperties : public ::testing::Test {
     *err = errors.str();
     return status;
   }
-  fs::path dir_;
+  openplx::testing::ScratchDir scratch_;
+  fs::path dir_ = scratch_.path();
 };
 
 const std::string kTorqueMotor =
