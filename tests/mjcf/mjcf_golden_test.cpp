@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
 namespace fs = std::filesystem;
@@ -22,8 +23,8 @@ std::string read(const fs::path& path) {
 
 TEST(MjcfGolden, SamplesMatchTheirGoldenFiles) {
   const fs::path root = fs::path(OPENPLX_TEST_DATA_DIR).parent_path();
-  const fs::path out = fs::temp_directory_path() / "openplx_mjcf_golden";
-  fs::create_directories(out);
+  const openplx::testing::ScratchDir scratch;
+  const fs::path& out = scratch.path();
   size_t samples = 0;
   for (const auto& entry : fs::directory_iterator(root / "samples")) {
     if (entry.path().extension() != ".openplx") continue;
@@ -45,7 +46,6 @@ TEST(MjcfGolden, SamplesMatchTheirGoldenFiles) {
     ++samples;
   }
   EXPECT_GE(samples, 1u);
-  fs::remove_all(out);
 }
 
 }  // namespace

@@ -6,15 +6,17 @@
 #include <fstream>
 
 #include "openplx/runtime/simulation.h"
+#include "tests/support/scratch_dir.h"
 
 namespace {
 
 namespace rt = openplx::runtime;
 namespace fs = std::filesystem;
 
-std::string write(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "openplx_runtime_api_test";
-  fs::create_directories(dir);
+using openplx::testing::ScratchDir;
+
+// Writes `text` to `name` in the test's scratch folder; returns the path.
+std::string write(const ScratchDir& dir, const std::string& name, const std::string& text) {
   const fs::path path = dir / name;
   std::ofstream(path) << text;
   return path.string();
@@ -91,7 +93,9 @@ TEST(RuntimeApi, BadValuesAreRejectedAndLeaveTheStateAlone) {
 }
 
 TEST(RuntimeApi, LoadErrorsCarryTheirLocation) {
-  const std::string path = write("broken.openplx", "Scene is Physics3D.System:\n    x is Real: 1 +\n");
+  const ScratchDir scratch;
+  const std::string path =
+      write(scratch, "broken.openplx", "Scene is Physics3D.System:\n    x is Real: 1 +\n");
   try {
     rt::Simulation::load(path);
     FAIL() << "no exception";
@@ -99,8 +103,9 @@ TEST(RuntimeApi, LoadErrorsCarryTheirLocation) {
     EXPECT_NE(std::string(e.what()).find(path + ":2:"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find(": error: "), std::string::npos) << e.what();
   }
-  EXPECT_THROW(rt::Simulation::load(write("missing_model.openplx", "A is Physics3D.System\n"), {"Nope", {}}),
-               rt::LoadError);
+  EXPECT_THROW(
+      rt::Simulation::load(write(scratch, "missing_model.openplx", "A is Physics3D.System\n"), {"Nope", {}}),
+      rt::LoadError);
 }
 
 // LoadOptions::timestep is MuJoCo's step (OpenPLX has none); a step that is not a positive number is refused.
@@ -120,7 +125,8 @@ TEST(RuntimeApi, TimestepComesFromTheLoadOptions) {
 // A kinematic cart (is_dynamic: false) follows its velocity input exactly, and what hangs from it comes
 // along; a free body takes its velocity input as its initial velocity and then falls under gravity.
 TEST(RuntimeApi, KinematicAndFreeBodiesTakeVelocityInputs) {
-  rt::Simulation sim = rt::Simulation::load(write("cart.openplx", kCart));
+  const ScratchDir scratch;
+  rt::Simulation sim = rt::Simulation::load(write(scratch, "cart.openplx", kCart));
   sim.input("cart.linear_velocity_world_input").set(Eigen::Vector3d(0.5, 0, 0));
   sim.input("cart.angular_velocity_world_input").set(Eigen::Vector3d(0, 0, 0.25));
   sim.input("stone.linear_velocity_world_input").set(Eigen::Vector3d(0, 0, 3));
@@ -170,7 +176,8 @@ TEST(RuntimeApi, VelocityOutputsMatchMuJoCo) {
 // takes m g = 19.62 N up and, about the hinge, the torque m g L / 2 = 9.81 N m about -y (connectors[0] is the
 // world, so the values are what the world exerts on the rod).
 TEST(RuntimeApi, MateForceAndTorqueOutputs) {
-  const std::string path = write("level_rod.openplx",
+  const ScratchDir scratch;
+  const std::string path = write(scratch, "level_rod.openplx",
                                  "Rod is Physics3D.Bodies.RigidBody:\n"
                                  "    inertia.mass: 2\n"
                                  "    geometry is Physics3D.Geometries.Box:\n"

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "openplx/runtime/simulation.h"
+#include "tests/support/scratch_dir.h"
 
 namespace {
 
@@ -154,7 +155,8 @@ namespace {
 // A thrown ball: the runtime starts from the emitter's "initial" keyframe, so the OpenPLX initial velocity is
 // the state at time 0, and after 0.5 s the ball is 2 m along x and g t² / 2 lower.
 TEST(RuntimeBehaviour, FreeBodyStartsWithItsInitialVelocity) {
-  const fs::path file = fs::temp_directory_path() / "openplx_runtime_thrown_ball.openplx";
+  const openplx::testing::ScratchDir scratch;
+  const fs::path file = scratch / "thrown_ball.openplx";
   std::ofstream(file) << "Scene is Physics3D.System:\n"
                          "    ball is Physics3D.Bodies.RigidBody:\n"
                          "        inertia.mass: 1\n"

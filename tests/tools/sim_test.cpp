@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/support/scratch_dir.h"
 #include "tools/sim/sim_options.h"
 
 namespace {
@@ -44,7 +45,8 @@ TEST(Sim, SetAtAndPrint) {
 }
 
 TEST(Sim, CsvHasOneRowPerStep) {
-  const fs::path csv = fs::temp_directory_path() / "openplx_sim_test.csv";
+  const openplx::testing::ScratchDir scratch;
+  const fs::path csv = scratch / "sim.csv";
   const SimRun run = sim({kSignalTest, "--time", "0.01", "--set", "motorSpeedInput=1", "--print",
                           "angularVelocity", "--print", "boxRPY", "--csv", csv.string()});
   ASSERT_EQ(run.status, 0) << run.err;
@@ -59,7 +61,8 @@ TEST(Sim, CsvHasOneRowPerStep) {
 
 // --timestep is MuJoCo's step: 0.01 s at 1 ms is ten steps, eleven rows with t = 0.
 TEST(Sim, TimestepSetsTheStep) {
-  const fs::path csv = fs::temp_directory_path() / "openplx_sim_timestep_test.csv";
+  const openplx::testing::ScratchDir scratch;
+  const fs::path csv = scratch / "sim_timestep.csv";
   const SimRun run = sim({kSignalTest, "--time", "0.01", "--timestep", "0.001", "--print", "angularVelocity",
                           "--csv", csv.string()});
   ASSERT_EQ(run.status, 0) << run.err;

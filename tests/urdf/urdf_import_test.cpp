@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "openplx/runtime/simulation.h"
+#include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
 namespace {
@@ -95,7 +96,8 @@ TEST(UrdfImport, MissingMeshesAreErrorsAtTheirMeshElements) {
 // and urdfdom alone would not: we read it with a warning there (and --strict makes that an error).
 TEST(UrdfImport, LimitWithoutEffortIsReadWithAWarning) {
   const fs::path path = fs::absolute(kUrdf / "bullet3" / "prismatic.urdf").lexically_normal();
-  const fs::path out = fs::temp_directory_path() / "openplx_urdf_import_test" / "prismatic.xml";
+  const openplx::testing::ScratchDir scratch;
+  const fs::path out = scratch / "prismatic.xml";
   std::string err;
   EXPECT_EQ(cli({path.string(), "-o", out.string(), "--check"}, &err), 0) << err;
   EXPECT_EQ(err.rfind(path.string() +
@@ -108,8 +110,8 @@ TEST(UrdfImport, LimitWithoutEffortIsReadWithAWarning) {
 }
 
 TEST(UrdfImport, UrdfConvertsDirectlyAndChecksInMuJoCo) {
-  const fs::path out = fs::temp_directory_path() / "openplx_urdf_import_test" / "r2d2.xml";
-  fs::create_directories(out.parent_path());
+  const openplx::testing::ScratchDir scratch;
+  const fs::path out = scratch / "r2d2.xml";
   std::string err;
   EXPECT_EQ(cli({(kUrdf / "bullet3" / "r2d2.urdf").string(), "-o", out.string(), "--check"}, &err), 0) << err;
   EXPECT_TRUE(fs::exists(out));
