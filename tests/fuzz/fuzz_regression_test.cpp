@@ -10,10 +10,12 @@
 #include "tests/fuzz/fuzz_evaluate.h"
 #include "tests/fuzz/fuzz_lex_parse.h"
 #include "tests/fuzz/fuzz_urdf.h"
+#include "tests/support/scratch_dir.h"
 
 namespace fs = std::filesystem;
 
 TEST(FuzzRegression, SavedInputsRunClean) {
+  const openplx::testing::ScratchDir scratch;  // the URDF inputs are read from a file
   size_t count = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(OPENPLX_TEST_DATA_DIR) / "fuzz/regressions")) {
     if (!entry.is_regular_file() || entry.path().filename() == "README.md") continue;
@@ -23,7 +25,7 @@ TEST(FuzzRegression, SavedInputsRunClean) {
     const std::string data = text.str();
     const auto* bytes = reinterpret_cast<const uint8_t*>(data.data());
     if (entry.path().extension() == ".urdf") {
-      openplx::fuzz::urdf_one(bytes, data.size());
+      openplx::fuzz::urdf_one(bytes, data.size(), scratch.path());
     } else {
       openplx::fuzz::lex_parse_one(bytes, data.size());
       openplx::fuzz::evaluate_one(bytes, data.size());

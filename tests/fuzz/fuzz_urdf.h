@@ -19,12 +19,13 @@
 
 namespace openplx::fuzz {
 
-inline void urdf_one(const uint8_t* data, size_t size) {
+// `dir` is where the URDF file goes: the regression test passes its own scratch folder.
+inline void urdf_one(const uint8_t* data, size_t size,
+                     const std::filesystem::path& dir = std::filesystem::temp_directory_path()) {
   namespace fe = openplx::frontend;
-  // A URDF enters through a file (its folder resolves meshes): one per process, rewritten each run.
-  static const std::string path =
-      (std::filesystem::temp_directory_path() / ("openplx_fuzz_" + std::to_string(getpid()) + ".urdf"))
-          .string();
+  // A URDF enters through a file (its folder resolves meshes): named by the process so parallel fuzzers do
+  // not share it, and removed after each run so none is left behind.
+  const std::string path = (dir / ("openplx_fuzz_" + std::to_string(getpid()) + ".urdf")).string();
   std::ofstream(path, std::ios::binary)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   fe::SourceManager sources;
@@ -40,6 +41,8 @@ inline void urdf_one(const uint8_t* data, size_t size) {
     out << openplx::mjcf::emit_mjcf(view, options, sink).document.to_string();
   }
   fe::print_diagnostics(out, sources, sink.diagnostics());
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
 }
 
 }  // namespace openplx::fuzz
