@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +17,10 @@ SoftEqualityResult apply_soft_equalities(Element& document, const std::vector<Pe
   SoftEqualityResult result;
   if (pending.empty()) return result;
   const fs::path folder = dir.empty() ? fs::temp_directory_path() : fs::path(dir);
-  const fs::path file = folder / (".openplx2mjcf-soft-" + std::to_string(::getpid()) + ".xml");
+  // The pid keeps processes apart, the counter threads and calls of one process.
+  static std::atomic<unsigned> counter{0};
+  const fs::path file = folder / (".openplx2mjcf-soft-" + std::to_string(::getpid()) + "-" +
+                                  std::to_string(counter++) + ".xml");
   std::ofstream(file) << document.to_string();
   char error[1000] = "";
   mjModel* m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));

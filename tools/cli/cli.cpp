@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -70,7 +71,10 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   // Beside the output (so relative mesh paths resolve), else in the temporary folder.
   const fs::path dir =
       emit_options.output_dir.empty() ? fs::temp_directory_path() : fs::path(emit_options.output_dir);
-  const fs::path file = dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + ".xml");
+  // The pid keeps processes apart, the counter threads and calls of one process.
+  static std::atomic<unsigned> counter{0};
+  const fs::path file =
+      dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".xml");
   const fe::SourceFile& source = evaluation.program->sources().file(evaluation.document->doc.file);
   const fe::SourceRange at_file{evaluation.document->doc.file, source.content_begin(),
                                 source.content_begin()};
