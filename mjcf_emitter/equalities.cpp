@@ -7,6 +7,8 @@ namespace openplx::mjcf {
 using natives::affine_compose;
 using natives::affine_inverse;
 
+// Mates outside the tree: loop closures, and disabled mates as inactive equalities (`active="false"`,
+// switched by their enable input through eq_active).
 void Lowering::emit_loop_closures(Element& root) {
   Element& equality = root.add("equality");
   Element& contact = root.add("contact");
@@ -31,6 +33,7 @@ void Lowering::emit_loop_closures(Element& root) {
         if (e.b >= 0) weld.set("body2", b);
         weld.set("anchor",
                  frame1.position);  // where the error is measured: the weld point, in body2's frame
+        if (!mate.enabled) weld.set("active", "false");
         equalities_of_mate_[e.mate].push_back(*weld.get("name"));
         if (soft) soft_equalities_.push_back({&weld, a, b, *soft, true});
         break;
@@ -47,6 +50,7 @@ void Lowering::emit_loop_closures(Element& root) {
           connect.set("name", name(mate.path) + (count == 1 ? "" : (k == 0 ? ".a" : ".b"))).set("body1", a);
           if (e.b >= 0) connect.set("body2", b);
           connect.set("anchor", point);
+          if (!mate.enabled) connect.set("active", "false");
           equalities_of_mate_[e.mate].push_back(*connect.get("name"));
           if (soft) soft_equalities_.push_back({&connect, a, b, *soft, false});
         }
@@ -59,6 +63,14 @@ void Lowering::emit_loop_closures(Element& root) {
         break;
       }
       default:
+        if (!mate.enabled) {
+          warn(mate.where, "`" + mate.path +
+                               "` is disabled (`enabled: false`) and MuJoCo 2.2.2 has no equality "
+                               "for a " +
+                               sn::mate_type_name(mate.type) +
+                               " that its enable input could switch on; it was left out");
+          continue;
+        }
         warn(mate.where, "`" + mate.path + "` closes a kinematic loop as a " + sn::mate_type_name(mate.type) +
                              "; MuJoCo 2.2.2 has no exact equality for it, so it was left out");
         continue;
@@ -68,8 +80,9 @@ void Lowering::emit_loop_closures(Element& root) {
     }
     for (const sn::Interaction1D& i : view_.interactions) {
       if (i.mate == e.mate) {
-        warn(i.where, "`" + i.path + "` acts on `" + mate.path +
-                          "`, which closes a loop and has no MuJoCo joint; " + "it was left out");
+        warn(i.where, "`" + i.path + "` acts on `" + mate.path + "`, which " +
+                          (mate.enabled ? "closes a loop" : "is disabled (`enabled: false`)") +
+                          " and has no MuJoCo joint; it was left out");
       }
     }
   }

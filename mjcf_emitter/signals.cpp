@@ -111,9 +111,12 @@ SignalBinding Lowering::bind_mate(SignalBinding b, std::string_view stem, int m)
     return b;
   }
   if (!tree) {
-    return unmapped(std::move(b), "`" + mate.path +
-                                      "` closes a kinematic loop as an equality constraint, which has no "
-                                      "joint coordinate or force sensor");
+    return unmapped(std::move(b),
+                    "`" + mate.path +
+                        (mate.enabled ? "` closes a kinematic loop as an equality constraint"
+                                      : "` is disabled (`enabled: false`): an inactive equality "
+                                        "constraint") +
+                        ", which has no joint coordinate or force sensor");
   }
   if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D", "Position1D", "LinearVelocity1D"})) {
     const bool rotational = any_of(stem, {"Angle", "AngularVelocity1D"});

@@ -36,8 +36,8 @@ bool Lowering::joint_mapped(const sn::Mate& mate) const {
   }
 }
 
-// Prim's algorithm from the world (and static bodies) over the mates, cheapest edge first; components the
-// world does not reach get a free joint at their first declared body.
+// Prim's algorithm from the world (and static bodies) over the enabled mates, cheapest edge first; components
+// the world does not reach get a free joint at their first declared body.
 void Lowering::choose_tree() {
   edges_.assign(view_.nodes.size(), TreeEdge{});
   in_tree_.assign(view_.nodes.size(), false);
@@ -75,8 +75,12 @@ void Lowering::choose_tree() {
     incident[adjacency_[k].a].push_back(static_cast<int>(k));
     incident[adjacency_[k].b].push_back(static_cast<int>(k));
   }
+  // A disabled mate (`enabled: false`) never joins the tree: it becomes an inactive equality (equalities.cpp)
+  // that its enable input can switch on, and its bodies move as if it were not there.
   auto reach = [&](int vertex) {
-    for (int k : incident[vertex]) queue.emplace(adjacency_[k].cost, adjacency_[k].mate, k);
+    for (int k : incident[vertex]) {
+      if (view_.mates[adjacency_[k].mate].enabled) queue.emplace(adjacency_[k].cost, adjacency_[k].mate, k);
+    }
   };
   auto grow = [&]() {
     while (!queue.empty()) {
