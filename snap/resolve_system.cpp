@@ -275,14 +275,11 @@ class SystemBuilder {
     return model && obj.type->is_subtype_of(model);
   }
 
+  // Typed reads go through the one AttributeReader the parameter readers use too.
   double real(fe::ObjectId id, std::string_view name, double fallback = 0.0) {
-    const fe::Value* v = ev_.value(id, name);
-    return v && v->is_number() ? v->as_real() : fallback;
+    return in_.real(id, name, fallback);
   }
-  fe::ObjectId object(fe::ObjectId id, std::string_view name) {
-    const fe::Value* v = ev_.value(id, name);
-    return v && v->kind == fe::Value::Kind::Object ? v->object : fe::kNoObject;
-  }
+  fe::ObjectId object(fe::ObjectId id, std::string_view name) { return in_.object(id, name); }
 
   void read_body(fe::ObjectId id, BodyProperties& body) {
     if (const fe::Value* d = ev_.value(id, "is_dynamic"); d && d->kind == fe::Value::Kind::Bool)
@@ -555,17 +552,7 @@ class SystemBuilder {
     }
   }
 
-  Eigen::Vector3d vec3(fe::ObjectId object, std::string_view name) {
-    const fe::Value* v = ev_.value(object, name);
-    if (!v || v->kind != fe::Value::Kind::Object) return Eigen::Vector3d::Zero();
-    Eigen::Vector3d out;
-    const char* axes[] = {"x", "y", "z"};
-    for (int i = 0; i < 3; ++i) {
-      const fe::Value* c = ev_.value(v->object, axes[i]);
-      out[i] = c && c->is_number() ? c->as_real() : 0.0;
-    }
-    return out;
-  }
+  Eigen::Vector3d vec3(fe::ObjectId object, std::string_view name) { return in_.vec3(object, name); }
 
   Transform affine(fe::ObjectId transform) {
     Transform t;
