@@ -1,5 +1,5 @@
-// Lowering pass, actuators: ranges and springs as joint attributes, <velocity>/<motor> actuators with their
-// limits.
+// Lowering pass, actuators: ranges as joint limits, springs as spring actuators, velocity motors as motor
+// constraints (velocity_motors.cpp), force motors as <motor>s, all with their effort limits.
 #include "mjcf_emitter/lowering.h"
 
 #include <cmath>
@@ -9,21 +9,15 @@ namespace openplx::mjcf {
 void Lowering::emit_actuators(Element& root) {
   Element& actuators = root.add("actuator");
   using K = sn::Interaction1D::Kind;
-  // Ranges and springs are joint attributes; several on one joint intersect (ranges) or add up (springs).
+  // Ranges are joint limits: several on one joint intersect.
   std::map<Element*, std::pair<double, double>> ranges;
-  std::map<Element*, std::pair<double, double>> springs;  // sum k, sum k * rest
   std::map<Element*, double> dampings;
   for (const sn::JointProperties& p : view_.joint_properties) {
     if (p.mate >= 0) joint_properties_[p.mate] = &p;
   }
   for (const sn::Interaction1D& i : view_.interactions) {
-    const bool velocity = i.kind == K::LinearVelocityMotor || i.kind == K::RotationalVelocityMotor;
-    if (!velocity || i.mate < 0 || !tree_mates_.count(i.mate)) continue;
-    if (Element* joint = joint_for(i.mate, i.kind == K::RotationalVelocityMotor)) ++velocity_motors_[joint];
-  }
-  for (const sn::Interaction1D& i : view_.interactions) {
     if (i.shaft >= 0) {
-      emit_shaft_motor(actuators, i);
+      emit_shaft_motor(root, i);
       continue;
     }
     if (i.mate < 0) {
@@ -47,36 +41,18 @@ void Lowering::emit_actuators(Element& root) {
       case K::RotationalRange: {
         const double lo = i.start, hi = i.end;
         range_joints_[index_in(view_.interactions, i)] = joint_name;
+        if (!i.enabled) break;  // its enable input sets the limit
         auto [it, fresh] = ranges.try_emplace(joint, lo, hi);
         if (!fresh) it->second = {std::max(it->second.first, lo), std::min(it->second.second, hi)};
         break;
       }
       case K::LinearSpring:
-      case K::TorsionSpring: {
-        const double k = i.stiffness;
-        const double rest = i.rest;
-        auto& [sum_k, sum_kr] = springs[joint];
-        sum_k += k;
-        sum_kr += k * rest;
-        springs_[index_in(view_.interactions, i)] = {joint_name, k, rest, 0.0};
-        dampings[joint] += spring_damping(i, k);
-        if (std::isfinite(i.min_effort) || std::isfinite(i.max_effort)) {
-          warn(i.where, "`" + i.path +
-                            ".min_effort`/`max_effort`: a MuJoCo joint spring has no force limit; the "
-                            "spring was emitted without one");
-        }
+      case K::TorsionSpring:
+        emit_spring(actuators, i, *joint, dampings);
         break;
-      }
       case K::LinearVelocityMotor:
       case K::RotationalVelocityMotor: {
-        // f = kv (ctrl - qdot); kv is bounded by the motor's gain and by what explicit Euler keeps stable.
-        const double gain = i.gain.value_or(1e8);
-        Element& a = actuators.add("velocity");
-        a.set("name", name(i.path)).set("joint", joint_name).set("kv", velocity_gain(gain, *joint, i));
-        effort_limits(a, i);
-        speed_limit(a, i);
-        actuator_ctrl_[index_in(view_.interactions, i)] = {static_cast<int>(actuator_count_++),
-                                                           i.target_speed.value_or(0.0)};
+        emit_velocity_motor(root, i, joint_name, effective_inertia(*joint));
         break;
       }
       case K::ForceMotor:
@@ -84,6 +60,8 @@ void Lowering::emit_actuators(Element& root) {
         Element& a = actuators.add("motor");
         a.set("name", name(i.path)).set("joint", joint_name).set("gear", "1");
         effort_limits(a, i);
+        if (!i.enabled) a.set("forcerange", "0 0");  // its enable input restores the range
+        effort_ranges_[index_in(view_.interactions, i)] = effort_range(i);
         actuator_ctrl_[index_in(view_.interactions, i)] = {static_cast<int>(actuator_count_++),
                                                            i.default_effort};
         break;
@@ -102,17 +80,32 @@ void Lowering::emit_actuators(Element& root) {
     }
     joint->set("limited", "true").set("range", number(range.first) + " " + number(range.second));
   }
-  for (auto& [joint, spring] : springs) {
-    joint->set("stiffness", spring.first);
-    const double rest = spring.first > 0 ? spring.second / spring.first : 0.0;
-    if (rest != 0) joint->set("springref", rest);
-    for (auto& [interaction, info] : springs_) {
-      if (info.joint == *joint->get("name")) info.joint_rest = rest;
-    }
-  }
   for (auto& [joint, damping] : dampings) {
     if (damping > 0) joint->set("damping", damping);
   }
+}
+
+// A spring as OpenPLX has it: its own rest (the actuator's control) and effort limits, f = k (rest - q) -
+// b qdot clamped to [min, max], one force as in AGX's spring constraint. The damping joins the clamped force
+// while explicit Euler keeps it stable (b h below the inertia driven); stiffer damping goes to the joint,
+// where Euler integrates it implicitly.
+void Lowering::emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
+                           std::map<Element*, double>& dampings) {
+  const double k = i.stiffness, b = spring_damping(i, k);
+  const bool clamped_damping = b * options_.timestep < effective_inertia(joint);
+  if (!clamped_damping) dampings[&joint] += b;
+  Element& a = actuators.add("general");
+  a.set("name", name(i.path))
+      .set("joint", *joint.get("name"))
+      .set("gainprm", k)
+      .set("biastype", "affine")
+      .set("biasprm", "0 " + number(-k) + " " + number(clamped_damping ? -b : 0.0));
+  effort_limits(a, i);
+  if (!i.enabled) a.set("forcerange", "0 0");  // its enable input restores the range
+  const int index = index_in(view_.interactions, i);
+  effort_ranges_[index] = effort_range(i);
+  actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.rest};
+  springs_[index] = name(i.path);
 }
 
 // Viscous damping of a spring: MechanicalDamping gives it, ConstraintRelaxationTimeDamping gives the time
@@ -123,27 +116,6 @@ double Lowering::spring_damping(const sn::Interaction1D& i, double k) {
   if (d.damping_constant) return *d.damping_constant;
   if (d.relaxation_time) return *d.relaxation_time * k;
   return 2 * options_.timestep * k;
-}
-
-// MuJoCo's velocity actuator pushes explicitly: stable under Euler only while kv h / I_eff < 2. Half of the
-// limit keeps tracking fast (the velocity error halves every step) with margin.
-double Lowering::velocity_gain(double gain, Element& joint, const sn::Interaction1D& motor) {
-  const double inertia = effective_inertia(joint);
-  if (!(inertia > 0)) return gain;
-  // The limit holds for the sum of the gains on one joint: share it among its velocity motors.
-  const double stable = 0.5 * inertia / options_.timestep / std::max(1, velocity_motors_[&joint]);
-  if (gain > stable) {
-    note_capped_gain(motor, gain, stable);
-    return stable;
-  }
-  return gain;
-}
-
-void Lowering::note_capped_gain(const sn::Interaction1D& motor, double gain, double stable) {
-  warn(motor.where, "`" + motor.path + ".gain` " + number(gain) +
-                        " would make MuJoCo's explicit velocity motor " +
-                        "unstable; emitted kv = " + number(stable) +
-                        " (half the stability limit I/h, shared by the joint's velocity motors)");
 }
 
 // The inertia the joint drives at the initial pose: the subtree below it, about the joint axis (rotation)
@@ -174,18 +146,21 @@ double Lowering::effective_inertia(Element& joint) {
   return total;
 }
 
-void Lowering::effort_limits(Element& actuator, const sn::Interaction1D& i) {
+// The effort range of a motor or spring: its own limits, narrowed by its URDF joint's effort limit (which
+// bounds every motor on the joint, as the robot's actuator would); +-1e10 stands for no limit.
+std::pair<double, double> Lowering::effort_range(const sn::Interaction1D& i) {
   double lo = i.min_effort, hi = i.max_effort;
-  // A URDF effort limit bounds every motor on its joint, as the robot's actuator would.
   if (auto it = joint_properties_.find(i.mate); it != joint_properties_.end() && it->second->effort > 0) {
     lo = std::max(lo, -it->second->effort);
     hi = std::min(hi, it->second->effort);
   }
-  // Always limited (±1e10 when the model gives no limit): every motor model has a range input, and the
-  // runtime can tighten only a limited actuator.
-  actuator.set("forcelimited", "true")
-      .set("forcerange",
-           number(std::isfinite(lo) ? lo : -1e10) + " " + number(std::isfinite(hi) ? hi : 1e10));
+  return {std::isfinite(lo) ? lo : -kNoEffortLimit, std::isfinite(hi) ? hi : kNoEffortLimit};
+}
+
+void Lowering::effort_limits(Element& actuator, const sn::Interaction1D& i) {
+  // Always limited: every motor model has a range input, and the runtime can tighten only a limited actuator.
+  const auto [lo, hi] = effort_range(i);
+  actuator.set("forcelimited", "true").set("forcerange", number(lo) + " " + number(hi));
 }
 
 // A URDF velocity limit bounds the speed a velocity motor may be asked for (its control range).

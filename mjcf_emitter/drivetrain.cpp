@@ -83,17 +83,10 @@ void Lowering::emit_drivetrain(Element& root) {
   }
 }
 
-// A rotational velocity motor on a shaft: a <velocity> actuator on the shaft's joint, its gain capped like
-// the 3-D motors' by the inertia the whole drivetrain presents at that shaft.
-void Lowering::emit_shaft_motor(Element& actuators, const sn::Interaction1D& i) {
-  const double gain = i.gain.value_or(1e8);
-  const double stable = 0.5 * drivetrain_inertia(i.shaft) / options_.timestep;
-  if (gain > stable) note_capped_gain(i, gain, stable);
-  Element& a = actuators.add("velocity");
-  a.set("name", name(i.path)).set("joint", shaft_joints_[i.shaft]).set("kv", std::min(gain, stable));
-  effort_limits(a, i);
-  actuator_ctrl_[index_in(view_.interactions, i)] = {static_cast<int>(actuator_count_++),
-                                                     i.target_speed.value_or(1.0)};
+// A rotational velocity motor on a shaft: a motor constraint (velocity_motors.cpp) on the shaft's joint,
+// its reference outweighing the whole drivetrain the shaft drives.
+void Lowering::emit_shaft_motor(Element& root, const sn::Interaction1D& i) {
+  emit_velocity_motor(root, i, shaft_joints_[i.shaft], drivetrain_inertia(i.shaft));
 }
 
 // Inertia reflected to shaft `start`: every shaft's inertia and every driven joint's subtree inertia, times

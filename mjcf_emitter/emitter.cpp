@@ -38,7 +38,7 @@ Emitted Lowering::run() {
   emit_contact_pairs(root);
   emit_collision_filters(root);
   emit_actuators(root);
-  emit_initial_velocities(root);
+  emit_initial_state(root);
   bind_signals(root, out.signals);
   if (assets_->children().empty()) drop_empty(root, "asset");
   for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})

@@ -1,4 +1,5 @@
-// Lowering pass, the initial state: <keyframe><key name="initial"> with free bodies' initial velocities.
+// Lowering pass, the initial state: <keyframe><key name="initial"> with free bodies' initial velocities and
+// every actuator's initial control (motor targets, spring rests, force motors' default efforts).
 #include "mjcf_emitter/lowering.h"
 
 namespace openplx::mjcf {
@@ -10,8 +11,19 @@ using natives::affine_inverse;
 // key's qpos with qpos0). The runtime starts from it; MuJoCo users call mj_resetDataKeyframe. OpenPLX gives
 // both velocities in the owning system's frame; a free joint's qvel is the world linear velocity, then the
 // angular velocity in the body's frame.
-void Lowering::emit_initial_velocities(Element& root) {
-  if (initial_velocities_.empty()) return;
+void Lowering::emit_initial_state(Element& root) {
+  std::vector<double> ctrl(actuator_count_, 0.0);
+  for (const auto& [interaction, control] : actuator_ctrl_)
+    ctrl[static_cast<size_t>(control.first)] = control.second;
+  const bool moving = !initial_velocities_.empty();
+  if (!moving && ctrl.empty()) return;
+  Element& key = root.add("keyframe").add("key").set("name", name("initial"));  // prefixed: scenes merge
+  if (moving) key.set("qvel", joined(initial_qvel()));
+  if (!ctrl.empty()) key.set("ctrl", joined(ctrl));
+}
+
+// Free bodies' initial velocities, as the key's qvel.
+std::vector<double> Lowering::initial_qvel() {
   std::map<const Element*, int> dof_address;
   int nv = 0;
   std::vector<const Element*> stack{world_};  // MuJoCo numbers dofs body by body, depth first
@@ -45,9 +57,13 @@ void Lowering::emit_initial_velocities(Element& root) {
       qvel[at + 3 + k] = angular[k];
     }
   }
+  return qvel;
+}
+
+std::string Lowering::joined(const std::vector<double>& values) {
   std::string text;
-  for (double v : qvel) text += (text.empty() ? "" : " ") + number(v);
-  root.add("keyframe").add("key").set("name", name("initial")).set("qvel", text);  // prefixed: scenes merge
+  for (double v : values) text += (text.empty() ? "" : " ") + number(v);
+  return text;
 }
 
 }  // namespace openplx::mjcf

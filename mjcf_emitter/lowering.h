@@ -25,6 +25,7 @@ namespace fe = openplx::frontend;
 namespace sn = openplx::snap;
 
 inline constexpr int kWorldVertex = -1;
+inline constexpr double kNoEffortLimit = 1e10;  // an effort range's stand-in for "no limit"
 
 struct TreeEdge {
   int mate = -1;              // -1: a free joint or a static body
@@ -118,7 +119,9 @@ class Lowering {
   std::string mesh_asset(const sn::Geometry& g);
 
   // --------------------------------------------------------------------------------- keyframe.cpp
-  void emit_initial_velocities(Element& root);
+  void emit_initial_state(Element& root);
+  std::vector<double> initial_qvel();
+  static std::string joined(const std::vector<double>& values);
 
   // --------------------------------------------------------------------------------- contacts.cpp
   void emit_contact_pairs(Element& root);
@@ -128,22 +131,29 @@ class Lowering {
 
   // -------------------------------------------------------------------------------- actuators.cpp
   void emit_actuators(Element& root);
+  void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
+                   std::map<Element*, double>& dampings);
   double spring_damping(const sn::Interaction1D& i, double k);
-  double velocity_gain(double gain, Element& joint, const sn::Interaction1D& motor);
-  void note_capped_gain(const sn::Interaction1D& motor, double gain, double stable);
   double effective_inertia(Element& joint);
+  std::pair<double, double> effort_range(const sn::Interaction1D& i);
   void effort_limits(Element& actuator, const sn::Interaction1D& i);
   void speed_limit(Element& actuator, const sn::Interaction1D& i);
 
+  // ------------------------------------------------------------------------- velocity_motors.cpp
+  void emit_velocity_motor(Element& root, const sn::Interaction1D& i, const std::string& joint,
+                           double inertia);
+  bool has_range_input(int interaction) const;
+
   // ------------------------------------------------------------------------------- drivetrain.cpp
   void emit_drivetrain(Element& root);
-  void emit_shaft_motor(Element& actuators, const sn::Interaction1D& i);
+  void emit_shaft_motor(Element& root, const sn::Interaction1D& i);
   double drivetrain_inertia(int start);
 
   // ---------------------------------------------------------------------------------- signals.cpp
   void bind_signals(Element& root, std::vector<SignalBinding>& out);
   SignalBinding bind(const sn::Signal& s);
   SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
+  SignalBinding bind_enabled(SignalBinding b, int k);
   SignalBinding bind_mate(SignalBinding b, std::string_view stem, int m);
   SignalBinding bind_body(SignalBinding b, std::string_view stem, int n);
   SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c);
@@ -180,7 +190,10 @@ class Lowering {
   std::map<Element*, JointInfo> joint_info_;
   std::map<int, MassProperties> body_mass_;
   std::map<int, std::vector<int>> tree_children_;
-  std::map<Element*, int> velocity_motors_;
+  std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and reference) name
+  std::map<int, std::pair<double, double>>
+      effort_ranges_;  // motor or spring -> its effort range enabled             // actuator indices of
+                       // velocity motors' centring forces
   std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
   std::set<std::string> emitted_geoms_;
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;
@@ -202,14 +215,8 @@ class Lowering {
   std::set<int> sites_;                                         // connectors that have a site
   std::map<int, int> child_of_mate_;                            // tree mate -> the body whose joint it is
   std::map<int, std::vector<std::string>> equalities_of_mate_;  // loop mate -> its equality names
-  struct SpringInfo {
-    std::string joint;
-    double stiffness;
-    double rest;
-    double joint_rest;  // the rest of all springs on the joint (stiffness-weighted)
-  };
-  std::map<int, SpringInfo> springs_;        // by interaction
-  std::map<int, std::string> range_joints_;  // by interaction
+  std::map<int, std::string> springs_;                          // spring interaction -> its actuator
+  std::map<int, std::string> range_joints_;                     // by interaction
 };
 
 }  // namespace openplx::mjcf

@@ -96,6 +96,8 @@ std::string_view to_string(MjObject object) {
       return "site";
     case MjObject::Equality:
       return "equality";
+    case MjObject::Tendon:
+      return "tendon";
   }
   return "none";
 }
@@ -118,16 +120,18 @@ std::string_view to_string(Quantity quantity) {
       return "free_linear_velocity";
     case Quantity::FreeAngularVelocity:
       return "free_angular_velocity";
-    case Quantity::SpringRest:
-      return "spring_rest";
+    case Quantity::MotorForceRange:
+      return "motor_force_range";
+    case Quantity::InteractionEnabled:
+      return "interaction_enabled";
     case Quantity::JointPosition:
       return "joint_position";
     case Quantity::JointVelocity:
       return "joint_velocity";
     case Quantity::ActuatorForce:
       return "actuator_force";
-    case Quantity::SpringForce:
-      return "spring_force";
+    case Quantity::MotorForce:
+      return "motor_force";
     case Quantity::JointLimitForce:
       return "joint_limit_force";
     case Quantity::BodyPosition:
@@ -187,8 +191,8 @@ std::string manifest_json(std::string_view model_name, const std::vector<SignalB
     append_quoted(out, b.sensor);
     (out += ", \"sign\": ") += number(b.sign);
     (out += ", \"initial\": ") += number(b.initial);
-    (out += ", \"gain\": ") += number(b.gain);
-    (out += ", \"offset\": ") += number(b.offset);
+    (out += ", \"low\": ") += number(b.low);
+    (out += ", \"high\": ") += number(b.high);
     out += ", \"reason\": ";
     append_quoted(out, b.reason);
     out += '}';

@@ -15,7 +15,14 @@ namespace openplx::mjcf {
 enum class SignalValue { Real, Bool, Int, Vec2, Vec3 };
 
 // The MuJoCo element type a binding's names refer to (an mjtObj).
-enum class MjObject { None, Actuator, Joint, Body, Site, Equality };
+enum class MjObject { None, Actuator, Joint, Body, Site, Equality, Tendon };
+
+// A velocity motor is a tendon whose friction loss holds the motor joint to a reference turning at the
+// target (velocity_motors.cpp); when its effort band is not centred on zero, an actuator of this name adds
+// the centring force.
+inline std::string motor_bias_name(const std::string& tendon) {
+  return tendon + "/bias";
+}
 
 // What the runtime does for a signal: inputs write, outputs read.
 enum class Quantity {
@@ -28,12 +35,17 @@ enum class Quantity {
   KinematicAngularVelocity,  // Body (mocap): world angular velocity; the runtime integrates d->mocap_quat
   FreeLinearVelocity,        // Joint (free): sets the world linear velocity of a free body (qvel[0..2])
   FreeAngularVelocity,       // Joint (free): sets the world angular velocity (MuJoCo keeps it in body axes)
-  SpringRest,  // Joint: m->qpos_spring[jnt_qposadr[id]], the joint spring's rest (Real, also readable)
+  MotorForceRange,  // Tendon (velocity motor): the effort band (min, max): friction loss (max - min) / 2 and
+                    // the bias actuator's force (max + min) / 2 (Vec2, also readable)
+  InteractionEnabled,  // an interaction's enabled state (Bool, also readable); off zeroes what it acts with:
+                       // Tendon: friction loss and bias; Actuator: force range; Joint (a range): jnt_limited.
+                       // `low`/`high` hold its effort range (its limits for a range) when enabled
   // --- outputs
   JointPosition,    // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
   JointVelocity,    // Joint: d->qvel[jnt_dofadr[id]], times `sign`
   ActuatorForce,    // Actuator: d->actuator_force[id] (N or N·m on the joint)
-  SpringForce,      // Joint: gain * (qpos - offset): one spring's force, gain = -stiffness, offset = its rest
+  MotorForce,       // Tendon (velocity motor): the friction row's force (efc rows of type
+                    // mjCNSTR_FRICTION_TENDON) plus the bias actuator's force, on the motor joint
   JointLimitForce,  // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
   BodyPosition,     // Body: d->xpos (the body frame's origin, world)
   BodyRPY,          // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
@@ -65,8 +77,8 @@ struct SignalBinding {
   std::string sensor;              // a MuJoCo sensor carrying the same value, "" when none
   double sign = 1.0;     // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's
   double initial = 0.0;  // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
-  double gain = 0.0;     // SpringForce
-  double offset = 0.0;   // SpringForce
+  double low = 0.0;      // InteractionEnabled
+  double high = 0.0;     // InteractionEnabled
   std::string reason;    // None: why nothing maps
 };
 
@@ -84,7 +96,7 @@ std::string_view to_string(MjObject object);
 std::string_view to_string(Quantity quantity);
 
 // The manifest: {"model": ..., "signals": [{"path", "direction", "type", "value", "unit", "enabled",
-// "quantity", "object", "names", "sensor", "sign", "initial", "gain", "offset", "reason"}]} with keys in that
+// "quantity", "object", "names", "sensor", "sign", "initial", "low", "high", "reason"}]} with keys in that
 // order, one signal per line, deterministic.
 std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings);
 

@@ -58,38 +58,67 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
 
 SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
-  if (auto a = actuator_ctrl_.find(k); a != actuator_ctrl_.end()) {  // a motor
-    const std::string actuator = name(i.path);
-    if (any_of(stem, {"TorqueRange", "ForceRange"}))
-      return mapped(std::move(b), Quantity::ForceRange, MjObject::Actuator, actuator);
-    const bool effort = any_of(stem, {"Torque1D", "Force1D"});
-    const bool target = b.input || !effort;  // an effort motor's input, a velocity motor's target
+  if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) return bind_enabled(std::move(b), k);
+  const bool effort = any_of(stem, {"Torque1D", "Force1D"});
+  const bool range = any_of(stem, {"TorqueRange", "ForceRange"});
+  const std::string element = name(i.path);
+  if (auto v = velocity_motors_.find(k); v != velocity_motors_.end()) {
+    if (range) return mapped(std::move(b), Quantity::MotorForceRange, MjObject::Tendon, v->second);
+    if (effort && !b.input) return mapped(std::move(b), Quantity::MotorForce, MjObject::Tendon, v->second);
+    if (any_of(stem, {"AngularVelocity1D", "LinearVelocity1D"})) {  // the target, also readable
+      b.initial = actuator_ctrl_.at(k).second;
+      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, element);
+    }
+  } else if (auto sp = springs_.find(k); sp != springs_.end()) {
+    if (any_of(stem, {"Angle", "Position1D"})) {  // the rest, also readable
+      b.initial = actuator_ctrl_.at(k).second;
+      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, sp->second);
+    }
     if (effort && !b.input)
-      return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, actuator);
-    if (target && any_of(stem, {"Torque1D", "Force1D", "AngularVelocity1D", "LinearVelocity1D"})) {
+      return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, sp->second);
+  } else if (auto a = actuator_ctrl_.find(k); a != actuator_ctrl_.end()) {  // a force or torque motor
+    if (range) return mapped(std::move(b), Quantity::ForceRange, MjObject::Actuator, element);
+    if (effort && !b.input) return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, element);
+    if (effort) {
       b.initial = a->second.second;
-      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, actuator);
-    }
-  }
-  if (auto sp = springs_.find(k); sp != springs_.end()) {
-    const SpringInfo& spring = sp->second;
-    if (any_of(stem, {"Angle", "Position1D"})) {
-      b.initial = spring.joint_rest;
-      return mapped(std::move(b), Quantity::SpringRest, MjObject::Joint, spring.joint);
-    }
-    if (!b.input && any_of(stem, {"Torque1D", "Force1D"})) {
-      b.gain = -spring.stiffness;
-      b.offset = spring.rest;
-      return mapped(std::move(b), Quantity::SpringForce, MjObject::Joint, spring.joint);
+      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, element);
     }
   }
   if (auto r = range_joints_.find(k); r != range_joints_.end() && !b.input) {
     if (any_of(stem, {"Angle", "Position1D"}))
       return mapped(std::move(b), Quantity::JointPosition, MjObject::Joint, r->second);
-    if (any_of(stem, {"Torque1D", "Force1D"}))
-      return mapped(std::move(b), Quantity::JointLimitForce, MjObject::Joint, r->second);
+    if (effort) return mapped(std::move(b), Quantity::JointLimitForce, MjObject::Joint, r->second);
   }
   return unmapped(std::move(b), "`" + i.path + "` has no MuJoCo element that carries it");
+}
+
+// The enabled state of a motor, spring or range: what the runtime zeroes to switch it off, and the effort
+// range (a range's limits) it restores.
+SignalBinding Lowering::bind_enabled(SignalBinding b, int k) {
+  const sn::Interaction1D& i = view_.interactions[k];
+  b.initial = i.enabled ? 1.0 : 0.0;
+  if (auto e = effort_ranges_.find(k); e != effort_ranges_.end()) {
+    auto v = velocity_motors_.find(k);
+    b = v != velocity_motors_.end()
+            ? mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Tendon, v->second)
+            : mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Actuator, name(i.path));
+    std::tie(b.low, b.high) = e->second;
+    return b;
+  }
+  if (auto r = range_joints_.find(k); r != range_joints_.end()) {
+    const auto shared = std::count_if(range_joints_.begin(), range_joints_.end(),
+                                      [&](const auto& other) { return other.second == r->second; });
+    if (shared > 1) {
+      return unmapped(std::move(b), "`" + i.path + "` shares joint " + r->second +
+                                        " with other ranges; MuJoCo has one limit per joint, so one range "
+                                        "cannot be switched alone");
+    }
+    b = mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Joint, r->second);
+    b.low = i.start;
+    b.high = i.end;
+    return b;
+  }
+  return unmapped(std::move(b), "`" + i.path + "` was not emitted");
 }
 
 SignalBinding Lowering::bind_mate(SignalBinding b, std::string_view stem, int m) {

@@ -23,7 +23,7 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   state->warnings = std::move(loaded.warnings);
   state->resolve(std::move(loaded.signals));
   mj_forward(state->m, state->d);  // outputs describe the initial state; the first step needs only mj_step2
-  state->cache_limit_forces();
+  state->cache_constraint_forces();
   return Simulation(std::move(state));
 }
 

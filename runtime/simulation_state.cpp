@@ -26,6 +26,8 @@ mjtObj object_type(MjObject object) {
       return mjOBJ_SITE;
     case MjObject::Equality:
       return mjOBJ_EQUALITY;
+    case MjObject::Tendon:
+      return mjOBJ_TENDON;
     case MjObject::None:
       break;
   }
@@ -140,13 +142,80 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
         if (b.quantity == Quantity::SiteAngularVelocity) s.direct3 = d->cvel + 6 * m->site_bodyid[id];
       }
     }
+    if (b.quantity == Quantity::MotorForce)
+      s.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
     s.binding = std::move(b);
-    if (s.binding.quantity == Quantity::JointLimitForce)
-      limit_signals.push_back(static_cast<int>(signals.size()));
+    if (s.binding.quantity == Quantity::JointLimitForce || s.binding.quantity == Quantity::MotorForce)
+      constraint_signals.push_back(static_cast<int>(signals.size()));
     by_name.emplace(s.info.name, static_cast<int>(signals.size()));
     signals.push_back(std::move(s));
   }
-  limit_forces.assign(signals.size(), 0.0);
+  constraint_forces.assign(signals.size(), 0.0);
+  init_switches();
+}
+
+// Enabled states and effort ranges: from the enable bindings (which carry the range when enabled), else from
+// the model as emitted.
+void SimulationState::init_switches() {
+  for (const ResolvedSignal& s : signals) {
+    const mjcf::SignalBinding& b = s.binding;
+    if (b.quantity != Quantity::InteractionEnabled) continue;
+    const int id = s.ids.front();
+    EffortSwitch& e = switches[{object_type(b.object), id}];
+    e = {b.initial != 0, b.low, b.high, -1};
+    if (b.object == MjObject::Tendon)
+      e.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
+  }
+  for (const ResolvedSignal& s : signals) {
+    const mjcf::SignalBinding& b = s.binding;
+    const int id = s.ids.empty() ? -1 : s.ids.front();
+    auto [it, fresh] = switches.try_emplace({object_type(b.object), id});
+    if (!fresh) continue;
+    EffortSwitch& e = it->second;
+    if (b.quantity == Quantity::ForceRange) {
+      e = {true, m->actuator_forcerange[2 * id], m->actuator_forcerange[2 * id + 1], -1};
+    } else if (b.quantity == Quantity::MotorForceRange) {
+      e.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
+      const double band = m->tendon_frictionloss[id],
+                   centre = e.bias >= 0 ? m->actuator_biasprm[e.bias * mjNBIAS] : 0;
+      e = {true, centre - band, centre + band, e.bias};
+    } else {
+      switches.erase(it);
+    }
+  }
+}
+
+EffortSwitch& SimulationState::effort_switch(const ResolvedSignal& s) {
+  return switches.at({object_type(s.binding.object), s.ids.front()});
+}
+
+// Writes an interaction's enabled state and effort range into the model.
+void SimulationState::apply(const ResolvedSignal& s) {
+  const EffortSwitch& e = effort_switch(s);
+  const int id = s.ids.front();
+  const double low = e.enabled ? e.low : 0.0, high = e.enabled ? e.high : 0.0;
+  switch (s.binding.object) {
+    case MjObject::Tendon:
+      if (e.bias < 0 && low + high != 0)
+        throw SignalError("input `" + s.info.name + "`: this motor's effort range must stay centred on 0");
+      m->tendon_frictionloss[id] = (high - low) / 2;
+      if (e.bias >= 0) m->actuator_biasprm[e.bias * mjNBIAS] = (high + low) / 2;
+      stale = true;  // friction rows are built in mj_step1
+      return;
+    case MjObject::Actuator:
+      m->actuator_forcelimited[id] = 1;
+      m->actuator_forcerange[2 * id] = low;
+      m->actuator_forcerange[2 * id + 1] = high;
+      return;
+    case MjObject::Joint:
+      m->jnt_limited[id] = e.enabled;
+      m->jnt_range[2 * id] = e.low;
+      m->jnt_range[2 * id + 1] = e.high;
+      stale = true;  // limit rows are built in mj_step1
+      return;
+    default:
+      return;
+  }
 }
 
 int SimulationState::find(std::string_view name, bool input) const {
@@ -176,7 +245,7 @@ void SimulationState::step() {
     stale = false;
   }
   mj_step2(m, d);
-  cache_limit_forces();
+  cache_constraint_forces();
   if (!post_step_signals.empty()) compute_post_step();
   if (kinematic) {
     const mjtNum h = m->opt.timestep;
@@ -197,14 +266,18 @@ void SimulationState::step() {
 
 // Constraint forces belong to the rows mj_step1 builds; the next mj_step1 rebuilds the rows, so the forces
 // of the step just taken are kept here first.
-void SimulationState::cache_limit_forces() {
-  for (int index : limit_signals) {
-    const int joint = signals[static_cast<size_t>(index)].ids.front();
+void SimulationState::cache_constraint_forces() {
+  for (int index : constraint_signals) {
+    const ResolvedSignal& s = signals[static_cast<size_t>(index)];
+    const int id = s.ids.front();
+    const int type =
+        s.binding.quantity == Quantity::JointLimitForce ? mjCNSTR_LIMIT_JOINT : mjCNSTR_FRICTION_TENDON;
     double total = 0;
     for (int r = 0; r < d->nefc; ++r) {
-      if (d->efc_type[r] == mjCNSTR_LIMIT_JOINT && d->efc_id[r] == joint) total += d->efc_force[r];
+      if (d->efc_type[r] == type && d->efc_id[r] == id) total += d->efc_force[r];
     }
-    limit_forces[static_cast<size_t>(index)] = total;
+    if (s.bias >= 0) total += d->actuator_force[s.bias];
+    constraint_forces[static_cast<size_t>(index)] = total;
   }
 }
 
@@ -255,19 +328,23 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       d->ctrl[id] = values[0];
       return;
     case Quantity::ForceRange:
+    case Quantity::MotorForceRange: {
       if (values[0] > values[1]) {
         throw SignalError("input `" + s.info.name + "` got a range whose minimum exceeds its maximum");
       }
-      m->actuator_forcerange[2 * id] = values[0];
-      m->actuator_forcerange[2 * id + 1] = values[1];
+      EffortSwitch& e = effort_switch(s);
+      e.low = values[0];
+      e.high = values[1];
+      apply(s);
+      return;
+    }
+    case Quantity::InteractionEnabled:
+      effort_switch(s).enabled = values[0] != 0;
+      apply(s);
       return;
     case Quantity::EqualityActive:
       for (int e : s.ids) m->eq_active[e] = values[0] != 0;
       stale = true;  // constraint rows are built in mj_step1
-      return;
-    case Quantity::SpringRest:
-      m->qpos_spring[s.address] = values[0];
-      stale = true;  // passive forces are computed in mj_step1
       return;
     case Quantity::KinematicLinearVelocity:
     case Quantity::KinematicAngularVelocity: {
@@ -317,14 +394,15 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       out[0] = d->ctrl[id];
       return;
     case Quantity::ForceRange:
-      out[0] = m->actuator_forcerange[2 * id];
-      out[1] = m->actuator_forcerange[2 * id + 1];
+    case Quantity::MotorForceRange:
+      out[0] = switches.at({object_type(b.object), id}).low;
+      out[1] = switches.at({object_type(b.object), id}).high;
+      return;
+    case Quantity::InteractionEnabled:
+      out[0] = switches.at({object_type(b.object), id}).enabled ? 1 : 0;
       return;
     case Quantity::EqualityActive:
       out[0] = m->eq_active[id] ? 1 : 0;
-      return;
-    case Quantity::SpringRest:
-      out[0] = m->qpos_spring[s.address];
       return;
     case Quantity::JointPosition:
       out[0] = b.sign * d->qpos[s.address];
@@ -335,11 +413,9 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::ActuatorForce:
       out[0] = d->actuator_force[id];
       return;
-    case Quantity::SpringForce:
-      out[0] = b.gain * (d->qpos[s.address] - b.offset);
-      return;
     case Quantity::JointLimitForce:
-      out[0] = limit_forces[static_cast<size_t>(index)];
+    case Quantity::MotorForce:
+      out[0] = constraint_forces[static_cast<size_t>(index)];
       return;
     case Quantity::BodyPosition:
       put(vec(d->xpos + 3 * id));

@@ -5,8 +5,10 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <map>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "mjcf_emitter/signal_binding.h"
@@ -24,6 +26,15 @@ struct ResolvedSignal {
   double* direct = nullptr;  // Real signals that are one mjData number: its address (value = scale * *direct)
   double scale = 1.0;
   const double* direct3 = nullptr;  // Vec3 outputs that are three consecutive mjData numbers
+  int bias = -1;                    // MotorForce: the motor's bias actuator, -1 when it has none
+};
+
+// What an interaction acts with when enabled, and whether it is (see Quantity::InteractionEnabled). Range
+// inputs change the effort range even while the interaction is off; switching it on restores it.
+struct EffortSwitch {
+  bool enabled = true;
+  double low = 0, high = 0;
+  int bias = -1;  // a velocity motor's bias actuator
 };
 
 struct SimulationState {
@@ -36,10 +47,11 @@ struct SimulationState {
   std::unordered_map<std::string, int> by_name;   // path -> index into signals
   std::vector<Eigen::Vector3d> kinematic_linear;  // per mocap body: world velocities the inputs set
   std::vector<Eigen::Vector3d> kinematic_angular;
-  bool kinematic = false;            // some kinematic velocity was set
-  bool stale = false;                // an input changed what mj_step1 computes: redo it before the next step
-  std::vector<int> limit_signals;    // signals reading joint-limit forces
-  std::vector<double> limit_forces;  // per signal: the limit force of the step just taken
+  bool kinematic = false;  // some kinematic velocity was set
+  bool stale = false;      // an input changed what mj_step1 computes: redo it before the next step
+  std::vector<int> constraint_signals;    // signals reading constraint forces (joint limits, motors)
+  std::vector<double> constraint_forces;  // per signal: the constraint force of the step just taken
+  std::map<std::pair<int, int>, EffortSwitch> switches;  // by (mjtObj, id)
   std::vector<int> post_step_signals;      // requested outputs computed after each step (no sensor)
   std::vector<Eigen::Vector3d> post_step;  // per signal: their values
 
@@ -51,7 +63,10 @@ struct SimulationState {
   void resolve(std::vector<mjcf::SignalBinding> bindings);
   int find(std::string_view name, bool input) const;  // throws SignalError
   void step();
-  void cache_limit_forces();
+  void cache_constraint_forces();
+  void init_switches();
+  EffortSwitch& effort_switch(const ResolvedSignal& s);
+  void apply(const ResolvedSignal& s);
   void request_output(int index);  // Simulation::output() asked for it: start computing it if it needs to be
   void compute_post_step();
 

@@ -39,6 +39,8 @@ class Signals : public openplx::testing::MjcfTest {
         return mjOBJ_SITE;
       case mj::MjObject::Equality:
         return mjOBJ_EQUALITY;
+      case mj::MjObject::Tendon:
+        return mjOBJ_TENDON;
       case mj::MjObject::None:
         break;
     }
@@ -76,8 +78,8 @@ TEST_F(Signals, EveryCorpusSignalHasOneBindingWhoseElementsExistInMuJoCo) {
         EXPECT_GE(mj_name2id(m, mjOBJ_SENSOR, b.sensor.c_str()), 0);
       }
       if (!b.input && b.enabled && b.quantity != Q::Ctrl && b.quantity != Q::ForceRange &&
-          b.quantity != Q::Constant && b.quantity != Q::EqualityActive && b.quantity != Q::SpringRest &&
-          b.quantity != Q::SpringForce) {
+          b.quantity != Q::Constant && b.quantity != Q::EqualityActive && b.quantity != Q::MotorForceRange &&
+          b.quantity != Q::MotorForce && b.quantity != Q::InteractionEnabled) {
         EXPECT_FALSE(b.sensor.empty()) << "an enabled output with a MuJoCo sensor kind has no sensor";
       }
     }
@@ -87,8 +89,9 @@ TEST_F(Signals, EveryCorpusSignalHasOneBindingWhoseElementsExistInMuJoCo) {
   accept_all_diags();
 }
 
-// torque_range: a velocity motor's inputs are its control and its force range; with forcerange written as the
-// torque_range_input (-1, 1) asks, MuJoCo's actuator force stays within it.
+// torque_range: a velocity motor's inputs are its control and its effort band; written as the
+// torque_range_input asks, (-1, 1) and then (2, 3), the motor's torque (its friction row plus its bias
+// actuator) stays within the band.
 TEST_F(Signals, TorqueRangeInputBoundsTheMotorTorque) {
   ASSERT_TRUE(load_corpus("torque_range.openplx")) << all_diags();
   const std::string path = emit("torque_range");
@@ -99,27 +102,38 @@ TEST_F(Signals, TorqueRangeInputBoundsTheMotorTorque) {
   EXPECT_EQ(speed.initial, 1.0);  // target_speed: 1
   EXPECT_EQ(speed.unit, "rad/s");
   const mj::SignalBinding& range = binding("pendulum.motor.torque_range_input");
-  EXPECT_EQ(range.quantity, Q::ForceRange);
+  EXPECT_EQ(range.quantity, Q::MotorForceRange);
+  EXPECT_EQ(range.object, mj::MjObject::Tendon);
   EXPECT_EQ(range.value, mj::SignalValue::Vec2);
   const mj::SignalBinding& torque = binding("pendulum.motor.torque_output");
-  EXPECT_EQ(torque.quantity, Q::ActuatorForce);
-  EXPECT_EQ(torque.sensor, "pendulum.motor.torque_output");
+  EXPECT_EQ(torque.quantity, Q::MotorForce);
+  EXPECT_EQ(torque.names, range.names);
 
   mjModel* m = load_mujoco(path);
   ASSERT_NE(m, nullptr);
   mjData* d = mj_makeData(m);
   const int a = id(m, mj::MjObject::Actuator, speed.names[0]);
-  const int sensor = mj_name2id(m, mjOBJ_SENSOR, torque.sensor.c_str());
+  const int tendon = id(m, mj::MjObject::Tendon, torque.names[0]);
+  const int bias = mj_name2id(m, mjOBJ_ACTUATOR, mj::motor_bias_name(torque.names[0]).c_str());
+  ASSERT_GE(bias, 0);  // the range input may move the band off zero
+  auto motor_torque = [&] {
+    double total = d->actuator_force[bias];
+    for (int r = 0; r < d->nefc; ++r)
+      if (d->efc_type[r] == mjCNSTR_FRICTION_TENDON && d->efc_id[r] == tendon) total += d->efc_force[r];
+    return total;
+  };
   d->ctrl[a] = speed.initial;
   mj_step(m, d);
   // The 10 kg rod hangs 0.3 pi off vertical: holding it takes m g (L/2) sin(0.3 pi) = 39.7 N m, far above 2.
-  EXPECT_GT(std::abs(d->actuator_force[a]), 2.0);
-  m->actuator_forcerange[2 * a] = -1;
-  m->actuator_forcerange[2 * a + 1] = 1;
+  EXPECT_GT(std::abs(motor_torque()), 2.0);
+  m->tendon_frictionloss[tendon] = 1;  // the band (-1, 1)
   mj_step(m, d);
-  EXPECT_LE(std::abs(d->actuator_force[a]), 1.0 + 1e-12);
-  mj_forward(m, d);  // sensors are evaluated before the step: refresh
-  EXPECT_NEAR(d->sensordata[m->sensor_adr[sensor]], d->actuator_force[a], 1e-12);
+  EXPECT_LE(std::abs(motor_torque()), 1.0 + 1e-9);
+  m->tendon_frictionloss[tendon] = 0.5;  // the band (2, 3)
+  m->actuator_biasprm[bias * mjNBIAS] = 2.5;
+  mj_step(m, d);
+  EXPECT_GE(motor_torque(), 2.0 - 1e-9);
+  EXPECT_LE(motor_torque(), 3.0 + 1e-9);
   mj_deleteData(d);
   mj_deleteModel(m);
 }
@@ -221,8 +235,8 @@ TEST_F(Signals, KinematicBodyIsMocapAndCarriesItsChildren) {
   mj_deleteModel(m);
 }
 
-// LinearSpringTest: the spring's target input moves the joint's spring rest; its force output is -k (q -
-// rest).
+// LinearSpringTest: the spring is its own actuator: its target input is the control (starting at its rest,
+// in the initial keyframe too), its force output the actuator's force, clamped to its effort limits.
 TEST_F(Signals, SpringBindingsCarryRestAndStiffness) {
   ASSERT_TRUE(load_corpus("LinearSpringTest.openplx")) << all_diags();
   const std::string path = emit("spring");
@@ -234,14 +248,19 @@ TEST_F(Signals, SpringBindingsCarryRestAndStiffness) {
     if (b.path.ends_with("external_spring.force_output")) force = &b;
   }
   ASSERT_TRUE(rest && force);
-  EXPECT_EQ(rest->quantity, Q::SpringRest);
-  EXPECT_EQ(force->quantity, Q::SpringForce);
+  EXPECT_EQ(rest->quantity, Q::Ctrl);
+  EXPECT_EQ(force->quantity, Q::ActuatorForce);
+  EXPECT_EQ(rest->names, force->names);
   mjModel* m = load_mujoco(path);
   ASSERT_NE(m, nullptr);
-  const int joint = id(m, rest->object, rest->names[0]);
-  ASSERT_GE(joint, 0);
-  EXPECT_DOUBLE_EQ(m->qpos_spring[m->jnt_qposadr[joint]], rest->initial);
-  EXPECT_DOUBLE_EQ(-force->gain, m->jnt_stiffness[joint]);  // the one spring on that joint
+  const int actuator = id(m, rest->object, rest->names[0]);
+  ASSERT_GE(actuator, 0);
+  const int key = mj_name2id(m, mjOBJ_KEY, "initial");
+  ASSERT_GE(key, 0);
+  EXPECT_DOUBLE_EQ(m->key_ctrl[key * m->nu + actuator], rest->initial);
+  EXPECT_DOUBLE_EQ(m->actuator_gainprm[actuator * mjNGAIN], -m->actuator_biasprm[actuator * mjNBIAS + 1]);
+  EXPECT_EQ(m->actuator_forcerange[2 * actuator], -200);
+  EXPECT_EQ(m->actuator_forcerange[2 * actuator + 1], 200);
   mj_deleteModel(m);
 }
 
@@ -260,7 +279,7 @@ TEST_F(Signals, ManifestIsDeterministicAndListsEveryBinding) {
       first.find("{\"path\": \"motorSpeedInput\", \"direction\": \"input\", \"type\": "
                  "\"Physics.Signals.AngularVelocity1DInput\", \"value\": \"real\", \"unit\": \"rad/s\", "
                  "\"enabled\": true, \"quantity\": \"ctrl\", \"object\": \"actuator\", \"names\": "
-                 "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"gain\": 0, \"offset\": 0, "
+                 "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"low\": 0, \"high\": 0, "
                  "\"reason\": \"\"}"),
       std::string::npos)
       << first;

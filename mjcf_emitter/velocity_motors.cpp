@@ -1,0 +1,96 @@
+// Lowering pass, velocity motors as constraints (README decision "Velocity motors"). AGX solves a velocity
+// motor as a 1-D velocity constraint whose force stays within the effort range. MuJoCo 2.2.2 has one
+// force-bounded velocity constraint: friction loss, which holds a velocity at zero. So each motor gets a
+// reference joint that turns at the target speed, and a fixed tendon (motor joint minus reference) whose
+// friction loss holds the two together with at most (max - min)/2; a constant force (max + min)/2 on the
+// motor joint centres that band on [min, max].
+#include <cmath>
+
+#include "mjcf_emitter/lowering.h"
+
+namespace openplx::mjcf {
+
+namespace {
+
+// The reference joint outweighs what the motor drives by this factor, so the motor's reaction moves it by a
+// millionth of the motor joint's speed change.
+constexpr double kReferenceInertiaRatio = 1e6;
+// Impedance of the friction row: the largest MuJoCo accepts. A load a0 on the motor joint leaves a creep of
+// h (1 - d) a0 per step.
+constexpr double kMotorImpedance = 0.9999;
+
+}  // namespace
+
+void Lowering::emit_velocity_motor(Element& root, const sn::Interaction1D& i, const std::string& joint,
+                                   double inertia) {
+  const double h = options_.timestep;
+  const std::string motor = name(i.path);
+  if (i.gain && inertia > 0 && *i.gain * h < inertia) {
+    warn(i.where, "`" + i.path + ".gain` " + number(*i.gain) +
+                      " makes a motor slower than one time step, which MuJoCo's motor constraint cannot "
+                      "express; the motor was emitted rigid (it reaches its target within a step)");
+  }
+  const double armature = kReferenceInertiaRatio * (inertia > 0 ? inertia : 1.0);
+  Element& body = world_->add("body");
+  body.set("name", motor + "/reference").set("pos", "0 0 0");
+  body.add("joint")
+      .set("name", motor + "/reference")
+      .set("type", "hinge")
+      .set("axis", "0 0 1")
+      .set("armature", armature);
+  body.add("inertial").set("pos", "0 0 0").set("mass", 1.0).set("diaginertia", "1 1 1");
+
+  auto [lo, hi] = effort_range(i);
+  const bool open_below = lo <= -kNoEffortLimit, open_above = hi >= kNoEffortLimit;
+  if (open_below != open_above) {
+    // A band open on one side would need an enormous centring force, which the friction row's softness
+    // turns into creep; the open side is closed instead, as wide again as the closed side is far from 0.
+    const double finite = open_below ? hi : lo, width = 2 * std::max(std::abs(finite), 1.0);
+    (open_below ? lo : hi) = open_below ? hi - width : lo + width;
+    warn(i.where,
+         "`" + i.path + (open_below ? ".min_effort" : ".max_effort") +
+             "` is unlimited while the other side is limited, which MuJoCo's motor constraint cannot "
+             "express; it was limited at " +
+             number(open_below ? lo : hi));
+  }
+  const int k = index_in(view_.interactions, i);
+  effort_ranges_[k] = {lo, hi};
+  // A disabled motor pushes with nothing until its enable input restores the band.
+  const double band = i.enabled ? (hi - lo) / 2 : 0.0, centre = i.enabled ? (hi + lo) / 2 : 0.0;
+  Element* tendons = root.child("tendon");
+  if (!tendons) tendons = &root.add("tendon");
+  Element& tendon = tendons->add("fixed");
+  tendon.set("name", motor)
+      .set("frictionloss", band)
+      .set("solreffriction", number(2 * h) + " 1")
+      .set("solimpfriction", number(kMotorImpedance) + " " + number(kMotorImpedance) + " 0.001 0.5 2");
+  tendon.add("joint").set("joint", joint).set("coef", 1.0);
+  tendon.add("joint").set("joint", motor + "/reference").set("coef", -1.0);
+
+  // The reference follows its control in one explicit step: kv h / (armature + its body's 1 kg m^2) = 1.
+  Element& actuators = *root.child("actuator");
+  Element& drive = actuators.add("velocity");
+  drive.set("name", motor).set("joint", motor + "/reference").set("kv", (armature + 1) / h);  // + its body
+  speed_limit(drive, i);
+  actuator_ctrl_[k] = {static_cast<int>(actuator_count_++),
+                       i.target_speed.value_or(i.shaft >= 0 ? 1.0 : 0.0)};
+  velocity_motors_[k] = motor;
+  if (hi + lo != 0 || has_range_input(k)) {  // the runtime moves the band by moving this force
+    actuators.add("general")
+        .set("name", motor_bias_name(motor))
+        .set("joint", joint)
+        .set("gainprm", "0")
+        .set("biastype", "affine")
+        .set("biasprm", number(centre) + " 0 0");
+    ++actuator_count_;
+  }
+}
+
+bool Lowering::has_range_input(int interaction) const {
+  return std::any_of(view_.signals.begin(), view_.signals.end(), [&](const sn::Signal& s) {
+    return s.input && s.source_kind == sn::SignalSource::Interaction && s.source == interaction &&
+           any_of(signal_stem(s.type), {"TorqueRange", "ForceRange"});
+  });
+}
+
+}  // namespace openplx::mjcf
