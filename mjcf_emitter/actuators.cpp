@@ -60,7 +60,7 @@ void Lowering::emit_actuators(Element& root) {
         Element& a = actuators.add("motor");
         a.set("name", name(i.path)).set("joint", joint_name).set("gear", "1");
         effort_limits(a, i);
-        if (!i.enabled) a.set("forcerange", "0 0");  // its enable input restores the range
+        if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
         effort_ranges_[index_in(view_.interactions, i)] = effort_range(i);
         actuator_ctrl_[index_in(view_.interactions, i)] = {static_cast<int>(actuator_count_++),
                                                            i.default_effort};
@@ -101,7 +101,7 @@ void Lowering::emit_spring(Element& actuators, const sn::Interaction1D& i, Eleme
       .set("biastype", "affine")
       .set("biasprm", "0 " + number(-k) + " " + number(clamped_damping ? -b : 0.0));
   effort_limits(a, i);
-  if (!i.enabled) a.set("forcerange", "0 0");  // its enable input restores the range
+  if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
   const int index = index_in(view_.interactions, i);
   effort_ranges_[index] = effort_range(i);
   actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.rest};

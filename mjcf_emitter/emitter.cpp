@@ -44,6 +44,7 @@ Emitted Lowering::run() {
   for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
     drop_empty(root, section);
   out.manifest_json = manifest_json(options_.model_name, out.signals);
+  stiffen_equalities(root);
   soften_equalities(root);
   return out;
 }

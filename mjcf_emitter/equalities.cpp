@@ -128,6 +128,30 @@ std::optional<MateCompliance> Lowering::compliance(const sn::Mate& mate) {
   return c;
 }
 
+// Rigid equalities (loop closures, drivetrain couplings, mimic joints) as stiff as MuJoCo holds them: time
+// constant 2 h (the shortest MuJoCo's solver keeps stable), critical damping, impedance 0.9999 (the largest
+// it accepts). An error then decays within about two steps, and a constant load leaves a residual of order
+// (1 - d) of the unconstrained motion per step (README "Couplings"). Flexible ones are set by
+// soften_equalities.
+void Lowering::stiffen_equalities(Element& root) {
+  Element* equality = root.child("equality");
+  if (!equality) return;
+  std::set<const Element*> soft;
+  for (const PendingSoftEquality& p : soft_equalities_) soft.insert(p.equality);
+  for (const std::unique_ptr<Element>& e : equality->children()) {
+    if (soft.count(e.get())) continue;
+    e->set("solref", rigid_solref()).set("solimp", rigid_solimp());
+  }
+}
+
+std::string Lowering::rigid_solref() const {
+  return number(2 * options_.timestep) + " 1";
+}
+
+std::string Lowering::rigid_solimp() {
+  return number(kRigidImpedance) + " " + number(kRigidImpedance) + " 0.001 0.5 2";
+}
+
 // Flexible loop closures need MuJoCo's own inverse-inertia estimate (dA): loaded once, then written.
 void Lowering::soften_equalities(Element& root) {
   if (soft_equalities_.empty() || sink_.has_errors()) return;

@@ -25,7 +25,8 @@ namespace fe = openplx::frontend;
 namespace sn = openplx::snap;
 
 inline constexpr int kWorldVertex = -1;
-inline constexpr double kNoEffortLimit = 1e10;  // an effort range's stand-in for "no limit"
+inline constexpr double kNoEffortLimit = 1e10;     // an effort range's stand-in for "no limit"
+inline constexpr double kRigidImpedance = 0.9999;  // the largest solimp MuJoCo accepts: rigid constraints
 
 struct TreeEdge {
   int mate = -1;              // -1: a free joint or a static body
@@ -111,6 +112,9 @@ class Lowering {
   void emit_loop_closures(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
   void soften_equalities(Element& root);
+  void stiffen_equalities(Element& root);
+  std::string rigid_solref() const;
+  static std::string rigid_solimp();
   void emit_joint_couplings(Element& root);
 
   // ----------------------------------------------------------------------------------- assets.cpp

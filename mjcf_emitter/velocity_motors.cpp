@@ -15,9 +15,6 @@ namespace {
 // The reference joint outweighs what the motor drives by this factor, so the motor's reaction moves it by a
 // millionth of the motor joint's speed change.
 constexpr double kReferenceInertiaRatio = 1e6;
-// Impedance of the friction row: the largest MuJoCo accepts. A load a0 on the motor joint leaves a creep of
-// h (1 - d) a0 per step.
-constexpr double kMotorImpedance = 0.9999;
 
 }  // namespace
 
@@ -62,8 +59,8 @@ void Lowering::emit_velocity_motor(Element& root, const sn::Interaction1D& i, co
   Element& tendon = tendons->add("fixed");
   tendon.set("name", motor)
       .set("frictionloss", band)
-      .set("solreffriction", number(2 * h) + " 1")
-      .set("solimpfriction", number(kMotorImpedance) + " " + number(kMotorImpedance) + " 0.001 0.5 2");
+      .set("solreffriction", rigid_solref())  // a load a0 on the joint leaves a creep of h (1 - d) a0
+      .set("solimpfriction", rigid_solimp());
   tendon.add("joint").set("joint", joint).set("coef", 1.0);
   tendon.add("joint").set("joint", motor + "/reference").set("coef", -1.0);
 

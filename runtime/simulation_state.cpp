@@ -130,7 +130,6 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
       if (b.quantity == Quantity::Ctrl && b.input) d->ctrl[id] = b.initial;  // MJCF has no initial control
       if (s.info.value == ValueType::Real) {  // the inlined fast path of Input::set and Output::real
         if (b.quantity == Quantity::Ctrl) s.direct = d->ctrl + id;
-        if (!b.input && b.quantity == Quantity::ActuatorForce) s.direct = d->actuator_force + id;
         if (!b.input && b.quantity == Quantity::JointPosition) s.direct = d->qpos + s.address;
         if (!b.input && b.quantity == Quantity::JointVelocity) s.direct = d->qvel + s.dof;
         s.scale = b.sign;
@@ -202,10 +201,12 @@ void SimulationState::apply(const ResolvedSignal& s) {
       if (e.bias >= 0) m->actuator_biasprm[e.bias * mjNBIAS] = (high + low) / 2;
       stale = true;  // friction rows are built in mj_step1
       return;
-    case MjObject::Actuator:
+    case MjObject::Actuator:  // off: it transmits nothing (gear 0), as the emitter writes a disabled one
+      m->actuator_gear[6 * id] = e.enabled ? 1.0 : 0.0;
       m->actuator_forcelimited[id] = 1;
-      m->actuator_forcerange[2 * id] = low;
-      m->actuator_forcerange[2 * id + 1] = high;
+      m->actuator_forcerange[2 * id] = e.low;
+      m->actuator_forcerange[2 * id + 1] = e.high;
+      stale = true;  // actuator lengths (a spring's bias) come from mj_step1's transmission
       return;
     case MjObject::Joint:
       m->jnt_limited[id] = e.enabled;
@@ -410,8 +411,8 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::JointVelocity:
       out[0] = b.sign * d->qvel[s.dof];
       return;
-    case Quantity::ActuatorForce:
-      out[0] = d->actuator_force[id];
+    case Quantity::ActuatorForce:  // on the joint: a disabled actuator's gear is 0
+      out[0] = d->actuator_force[id] * m->actuator_gear[6 * id];
       return;
     case Quantity::JointLimitForce:
     case Quantity::MotorForce:

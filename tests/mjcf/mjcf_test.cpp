@@ -359,7 +359,8 @@ TEST_F(Mjcf, LoopClosureOnASystemConnectorStartsSatisfied) {
   ASSERT_TRUE(check.loaded) << check.load_error;
   EXPECT_TRUE(check.problems.empty()) << check.problems.front();
   EXPECT_LE(check.max_equality_residual, 1e-9);
-  EXPECT_NE(xml_.find("<connect name=\"ball\" body1=\"world\" body2=\"link\" anchor=\"2 0 1\"/>"),
+  EXPECT_NE(xml_.find("<connect name=\"ball\" body1=\"world\" body2=\"link\" anchor=\"2 0 1\" solref=\"0.004 "
+                      "1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>"),
             std::string::npos)
       << xml_;
 }
@@ -516,7 +517,7 @@ TEST_F(Mjcf, DriveTrainBecomesRotorsAndEqualities) {
   accept_all_diags();
   EXPECT_NE(
       xml_.find("<joint name=\"pendulum.hinge_actuator\" joint1=\"pendulum.hinge\" joint2=\"pendulum.shaft\" "
-                "polycoef=\"0 1 0 0 0\"/>"),
+                "polycoef=\"0 1 0 0 0\" solref=\"0.004 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>"),
       std::string::npos)
       << xml_;
   mjModel* m = load_mujoco(path);
