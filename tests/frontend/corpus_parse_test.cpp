@@ -22,6 +22,9 @@ struct Input {
   std::string golden_name;  // path under tests/golden/ast
 };
 
+// GoogleTest prints a parameter in test listings (and so in ctest's names): the golden path, not raw bytes.
+void PrintTo(const Input& input, std::ostream* os) { *os << input.golden_name; }
+
 std::vector<Input> collect(const fs::path& root, const std::string& prefix) {
   std::vector<Input> inputs;
   if (!fs::is_directory(root)) return inputs;
