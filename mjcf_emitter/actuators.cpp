@@ -56,16 +56,9 @@ void Lowering::emit_actuators(Element& root) {
         break;
       }
       case K::ForceMotor:
-      case K::TorqueMotor: {
-        Element& a = actuators.add("motor");
-        a.set("name", name(i.path)).set("joint", joint_name).set("gear", "1");
-        effort_limits(a, i);
-        if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
-        effort_ranges_[index_in(view_.interactions, i)] = effort_range(i);
-        actuator_ctrl_[index_in(view_.interactions, i)] = {static_cast<int>(actuator_count_++),
-                                                           i.default_effort};
+      case K::TorqueMotor:
+        emit_effort_motor(actuators, i, joint_name);
         break;
-      }
       default:
         warn(i.where, "`" + i.path + "` has no MuJoCo mapping yet; it was left out");
         break;
@@ -83,6 +76,18 @@ void Lowering::emit_actuators(Element& root) {
   for (auto& [joint, damping] : dampings) {
     if (damping > 0) joint->set("damping", damping);
   }
+}
+
+// A force or torque motor: a <motor> pushing its control (the default effort at first) within its effort
+// range.
+void Lowering::emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint) {
+  Element& a = actuators.add("motor");
+  a.set("name", name(i.path)).set("joint", joint).set("gear", "1");
+  effort_limits(a, i);
+  if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
+  const int index = index_in(view_.interactions, i);
+  effort_ranges_[index] = effort_range(i);
+  actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.default_effort};
 }
 
 // A spring as OpenPLX has it: its own rest (the actuator's control) and effort limits, f = k (rest - q) -

@@ -83,9 +83,13 @@ void Lowering::emit_drivetrain(Element& root) {
   }
 }
 
-// A rotational velocity motor on a shaft: a motor constraint (velocity_motors.cpp) on the shaft's joint,
-// its reference outweighing the whole drivetrain the shaft drives.
+// A motor on a shaft: a velocity motor is a motor constraint (velocity_motors.cpp) on the shaft's joint, its
+// reference outweighing the whole drivetrain the shaft drives; a torque motor a <motor> on that joint.
 void Lowering::emit_shaft_motor(Element& root, const sn::Interaction1D& i) {
+  if (i.kind == sn::Interaction1D::Kind::TorqueMotor) {
+    emit_effort_motor(*root.child("actuator"), i, shaft_joints_[i.shaft]);
+    return;
+  }
   emit_velocity_motor(root, i, shaft_joints_[i.shaft], drivetrain_inertia(i.shaft));
 }
 

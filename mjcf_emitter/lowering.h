@@ -135,6 +135,7 @@ class Lowering {
 
   // -------------------------------------------------------------------------------- actuators.cpp
   void emit_actuators(Element& root);
+  void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
   void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
                    std::map<Element*, double>& dampings);
   double spring_damping(const sn::Interaction1D& i, double k);

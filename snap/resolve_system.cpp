@@ -40,6 +40,7 @@ class SystemBuilder {
     differential_ = program.loaded_model("DriveTrain.Differential");
     drive_actuator_ = program.loaded_model("DriveTrain.Actuator");
     motor1d_ = program.loaded_model("Physics1D.Interactions.RotationalVelocityMotor");
+    torque_motor1d_ = program.loaded_model("DriveTrain.TorqueMotor");
     mimic_ = program.loaded_model("Urdf.Mimic");
     joint_properties_ = program.loaded_model("Urdf.JointProperties");
     package_path_ = program.loaded_model("Urdf.PackagePath");
@@ -51,7 +52,7 @@ class SystemBuilder {
           "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.LinearBody",
           "DriveTrain.ViscousGear", "DriveTrain.TorqueLimitedSlipDifferential", "DriveTrain.GearBox",
           "DriveTrain.ManualClutch", "DriveTrain.ManualBrake", "DriveTrain.EmpiricalTorqueConverter",
-          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.TorqueMotor", "DriveTrain.PowerSource"}) {
+          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.PowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
@@ -425,8 +426,10 @@ class SystemBuilder {
     }
     for (JointProperties& p : view_.joint_properties) p.mate = mate_index(object(p.object, "mate"));
     for (Interaction1D& i : view_.interactions) {
-      if (!is(ev_.graph().at(i.object), motor1d_)) continue;
-      i.kind = Interaction1D::Kind::RotationalVelocityMotor;
+      const fe::Object& obj = ev_.graph().at(i.object);
+      if (!is(obj, motor1d_) && !is(obj, torque_motor1d_)) continue;
+      i.kind =
+          is(obj, motor1d_) ? Interaction1D::Kind::RotationalVelocityMotor : Interaction1D::Kind::TorqueMotor;
       const std::vector<int> on = connectors(i.object);
       i.shaft = on.size() == 1 ? on[0] : -1;
     }
@@ -720,6 +723,7 @@ class SystemBuilder {
   std::vector<std::pair<fe::ModelInfo*, Interaction1D::Kind>> kinds1d_;
   std::unordered_map<const fe::ModelInfo*, Role> roles_;
   fe::ModelInfo* shaft_ = nullptr;
+  fe::ModelInfo* torque_motor1d_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;
   fe::ModelInfo* differential_ = nullptr;
   fe::ModelInfo* drive_actuator_ = nullptr;

@@ -229,3 +229,32 @@ TEST(MotorConstraint, TheInitialKeyframeStartsMotorsInPlainMuJoCo) {
 }
 
 }  // namespace
+
+namespace {
+
+// drive_train_torque_input (issue 15's case): drive_train_velocity_input with a DriveTrain.TorqueMotor on
+// the shaft. -1000 N m for 1 s through the rigid hinge actuator spins the hinge past -10 rad/s: about
+// -1000 N m s / (1 kg m^2 shaft + 10 kg rod about its end, m L^2 / 3 = 3.3 kg m^2), less gravity's share.
+TEST(DriveTrainMotor, TorqueMotorOnAShaftDrivesTheHinge) {
+  const openplx::testing::ScratchDir dir;
+  std::ifstream in(std::string(OPENPLX_CORPUS_DIR) + "/agxunity/drive_train_velocity_input.openplx");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"motor is Physics1D.Interactions.RotationalVelocityMotor:",
+                                            "motor is DriveTrain.TorqueMotor:"},
+        {"velocity_motor_input is Physics.Signals.AngularVelocity1DInput:",
+         "torque_input is Physics.Signals.Torque1DInput:"}}) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  rt::Simulation sim = load(dir, text);
+  sim.input("torque_input").set(-1000.0);
+  sim.advance(1.0);
+  EXPECT_NEAR(sim.output("pendulum.motor.torque_output").real(), -1000.0, 1e-9);
+  const double speed = sim.output("pendulum.hinge.angular_velocity_output").real();
+  EXPECT_LE(speed, -10.0);
+  EXPECT_NEAR(speed, -1000.0 / (1.0 + 10.0 / 3), 0.1 * 1000.0 / (1.0 + 10.0 / 3));
+}
+
+}  // namespace
