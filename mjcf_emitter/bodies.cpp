@@ -65,12 +65,13 @@ Element& Lowering::emit_body(Element& parent, int node) {
   emit_inertial(body, node);
   const bool moving = !n.body.initial_linear_velocity.isZero() || !n.body.initial_angular_velocity.isZero();
   if (moving && free_roots_.count(node)) {
-    initial_velocities_.push_back(node);  // written as the "initial" keyframe (emit_initial_velocities)
-  } else if (moving) {
-    warn(n.where,
-         "`" + n.path +
-             ".kinematics.initial_local_*_velocity`: only a free body's initial velocity maps to MuJoCo "
-             "(a keyframe); this body starts at rest");
+    initial_velocities_.push_back(node);       // written as the "initial" keyframe (emit_initial_state)
+  } else if (moving && !mocap_.count(node)) {  // a kinematic body's drives its velocity inputs (signals.cpp)
+    warn(
+        n.where,
+        "`" + n.path +
+            ".kinematics.initial_local_*_velocity`: a body moving through its joints has no initial velocity "
+            "of its own in MuJoCo; this body starts at rest");
   }
   for (const sn::Geometry* g : geometries_of(node)) emit_geom(body, *g, g->local, !n.body.dynamic);
   return body;

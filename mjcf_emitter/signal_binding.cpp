@@ -191,6 +191,10 @@ std::string manifest_json(std::string_view model_name, const std::vector<SignalB
     append_quoted(out, b.sensor);
     (out += ", \"sign\": ") += number(b.sign);
     (out += ", \"initial\": ") += number(b.initial);
+    out += ", \"initial_vector\": [";
+    for (size_t k = 0; k < b.initial_vector.size(); ++k)
+      (out += k ? ", " : "") += number(b.initial_vector[k]);
+    out += ']';
     (out += ", \"low\": ") += number(b.low);
     (out += ", \"high\": ") += number(b.high);
     out += ", \"reason\": ";

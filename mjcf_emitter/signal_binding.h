@@ -31,7 +31,9 @@ enum class Quantity {
   Ctrl,            // Actuator: d->ctrl[id]; `initial` is the control before the first step
   ForceRange,      // Actuator: m->actuator_forcerange[2id], [2id+1] = (min, max)   (Vec2, also readable)
   EqualityActive,  // Equality: m->eq_active[id] for every name (Bool, also readable)
-  KinematicLinearVelocity,   // Body (mocap): world linear velocity; the runtime integrates d->mocap_pos
+  KinematicLinearVelocity,   // Body (mocap): world linear velocity; the runtime integrates d->mocap_pos.
+                             // Velocity outputs of the body, of its sites and of bodies below it add this
+                             // motion (MuJoCo gives mocap bodies zero velocity; its sensors read without it)
   KinematicAngularVelocity,  // Body (mocap): world angular velocity; the runtime integrates d->mocap_quat
   FreeLinearVelocity,        // Joint (free): sets the world linear velocity of a free body (qvel[0..2])
   FreeAngularVelocity,       // Joint (free): sets the world angular velocity (MuJoCo keeps it in body axes)
@@ -77,9 +79,10 @@ struct SignalBinding {
   std::string sensor;              // a MuJoCo sensor carrying the same value, "" when none
   double sign = 1.0;     // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's
   double initial = 0.0;  // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
-  double low = 0.0;      // InteractionEnabled
-  double high = 0.0;     // InteractionEnabled
-  std::string reason;    // None: why nothing maps
+  std::vector<double> initial_vector;  // Kinematic*Velocity: the velocity before any input (world axes)
+  double low = 0.0;                    // InteractionEnabled
+  double high = 0.0;                   // InteractionEnabled
+  std::string reason;                  // None: why nothing maps
 };
 
 // The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").
@@ -96,8 +99,8 @@ std::string_view to_string(MjObject object);
 std::string_view to_string(Quantity quantity);
 
 // The manifest: {"model": ..., "signals": [{"path", "direction", "type", "value", "unit", "enabled",
-// "quantity", "object", "names", "sensor", "sign", "initial", "low", "high", "reason"}]} with keys in that
-// order, one signal per line, deterministic.
+// "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector", "low", "high", "reason"}]}
+// with keys in that order, one signal per line, deterministic.
 std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings);
 
 }  // namespace openplx::mjcf

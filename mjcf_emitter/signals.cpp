@@ -177,7 +177,14 @@ SignalBinding Lowering::bind_body(SignalBinding b, std::string_view stem, int n)
   if (b.input) {
     const bool linear = stem == "LinearVelocity3D";
     if (!linear && stem != "AngularVelocity3D") return unmapped(std::move(b), "no MuJoCo input of a body");
-    if (mocap_.count(n)) {
+    if (mocap_.count(n)) {  // starting at the body's initial velocity, in world axes
+      const sn::FrameNode& node = view_.nodes[n];
+      const Eigen::Matrix3d system = node.parent >= 0
+                                         ? snap_.node_world[node.parent].rotation.toRotationMatrix()
+                                         : Eigen::Matrix3d::Identity();
+      const Eigen::Vector3d v =
+          system * (linear ? node.body.initial_linear_velocity : node.body.initial_angular_velocity);
+      b.initial_vector = {v.x(), v.y(), v.z()};
       return mapped(std::move(b),
                     linear ? Quantity::KinematicLinearVelocity : Quantity::KinematicAngularVelocity,
                     MjObject::Body, body);

@@ -127,14 +127,26 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
       } else if (b.object == MjObject::Body) {
         s.address = m->body_mocapid[id];
       }
-      if (b.quantity == Quantity::Ctrl && b.input) d->ctrl[id] = b.initial;  // MJCF has no initial control
+      if (b.quantity == Quantity::Ctrl && b.input) d->ctrl[id] = b.initial;  // the keyframe has it too
+      const bool kinematic_input =
+          b.quantity == Quantity::KinematicLinearVelocity || b.quantity == Quantity::KinematicAngularVelocity;
+      if (kinematic_input && b.initial_vector.size() == 3 && s.address >= 0) {  // MJCF has no mocap velocity
+        auto& target = b.quantity == Quantity::KinematicLinearVelocity ? kinematic_linear : kinematic_angular;
+        target[static_cast<size_t>(s.address)] =
+            Eigen::Vector3d(b.initial_vector[0], b.initial_vector[1], b.initial_vector[2]);
+        kinematic = kinematic || !target[static_cast<size_t>(s.address)].isZero();
+      }
       if (s.info.value == ValueType::Real) {  // the inlined fast path of Input::set and Output::real
         if (b.quantity == Quantity::Ctrl) s.direct = d->ctrl + id;
         if (!b.input && b.quantity == Quantity::JointPosition) s.direct = d->qpos + s.address;
         if (!b.input && b.quantity == Quantity::JointVelocity) s.direct = d->qvel + s.dof;
         s.scale = b.sign;
       }
-      if (!b.input && s.info.value == ValueType::Vec3) {  // the inlined fast path of Output::vec3
+      const int moved_by = b.object == MjObject::Body   ? id
+                           : b.object == MjObject::Site ? m->site_bodyid[id]
+                                                        : 0;
+      const bool carried = m->body_mocapid[m->body_rootid[moved_by]] >= 0;  // velocities need the mocap's
+      if (!b.input && s.info.value == ValueType::Vec3 && !carried) {  // the inlined fast path of Output::vec3
         if (b.quantity == Quantity::BodyPosition) s.direct3 = d->xpos + 3 * id;
         if (b.quantity == Quantity::SitePosition) s.direct3 = d->site_xpos + 3 * id;
         if (b.quantity == Quantity::BodyAngularVelocity) s.direct3 = d->cvel + 6 * id;
@@ -370,6 +382,20 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
   }
 }
 
+// MuJoCo gives mocap bodies (and so everything hanging from them) no velocity of their own: a point of body
+// b adds the rigid motion of the kinematic body at the root of b's tree, as its velocity inputs set it.
+Eigen::Vector3d SimulationState::carried_linear(int b, const mjtNum* point) const {
+  const int root = m->body_rootid[b], k = m->body_mocapid[root];
+  if (k < 0) return Eigen::Vector3d::Zero();
+  const size_t at = static_cast<size_t>(k);
+  return kinematic_linear[at] + kinematic_angular[at].cross(vec(point) - vec(d->xpos + 3 * root));
+}
+
+Eigen::Vector3d SimulationState::carried_angular(int b) const {
+  const int k = m->body_mocapid[m->body_rootid[b]];
+  return k < 0 ? Eigen::Vector3d::Zero() : kinematic_angular[static_cast<size_t>(k)];
+}
+
 void SimulationState::read(int index, double* out, int count, ValueType wanted) const {
   const ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
@@ -425,10 +451,10 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       put(rpy_from_quat(d->xquat + 4 * id));
       return;
     case Quantity::BodyLinearVelocity:
-      put(linear_velocity(m, d, id, d->xpos + 3 * id));
+      put(linear_velocity(m, d, id, d->xpos + 3 * id) + carried_linear(id, d->xpos + 3 * id));
       return;
     case Quantity::BodyAngularVelocity:
-      put(angular_velocity(d, id));
+      put(angular_velocity(d, id) + carried_angular(id));
       return;
     case Quantity::BodyLinearAcceleration:
       put(vec(from_sensor("an acceleration")));
@@ -440,10 +466,11 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       put(rpy_from_matrix(d->site_xmat + 9 * id));
       return;
     case Quantity::SiteLinearVelocity:
-      put(linear_velocity(m, d, m->site_bodyid[id], d->site_xpos + 3 * id));
+      put(linear_velocity(m, d, m->site_bodyid[id], d->site_xpos + 3 * id) +
+          carried_linear(m->site_bodyid[id], d->site_xpos + 3 * id));
       return;
     case Quantity::SiteAngularVelocity:
-      put(angular_velocity(d, m->site_bodyid[id]));
+      put(angular_velocity(d, m->site_bodyid[id]) + carried_angular(m->site_bodyid[id]));
       return;
     case Quantity::MateForce:
     case Quantity::MateTorque: {

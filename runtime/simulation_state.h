@@ -73,6 +73,8 @@ struct SimulationState {
   // Checked access: throws SignalError when the value kind does not fit the signal.
   void write(int index, const double* values, int count, ValueType given);
   void read(int index, double* values, int count, ValueType wanted) const;
+  Eigen::Vector3d carried_linear(int body, const mjtNum* point) const;
+  Eigen::Vector3d carried_angular(int body) const;
 };
 
 }  // namespace openplx::runtime

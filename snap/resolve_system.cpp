@@ -109,6 +109,7 @@ class SystemBuilder {
       stack.pop_back();
       visit(item.object, item.node, stack, false);
     }
+    apply_kinematic_control();
     for (Mate& mate : view_.mates) resolve_connectors(mate);
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
     resolve_drivetrain();
@@ -432,6 +433,23 @@ class SystemBuilder {
           is(obj, motor1d_) ? Interaction1D::Kind::RotationalVelocityMotor : Interaction1D::Kind::TorqueMotor;
       const std::vector<int> on = connectors(i.object);
       i.shaft = on.size() == 1 ? on[0] : -1;
+    }
+  }
+
+  // Physics3D.System.kinematically_controlled (deprecated for RigidBody.is_dynamic, still used): the bodies
+  // it lists are kinematic, as `is_dynamic: false` makes them.
+  void apply_kinematic_control() {
+    std::unordered_map<fe::ObjectId, size_t> node_of;
+    for (size_t k = 0; k < view_.nodes.size(); ++k) node_of[view_.nodes[k].object] = k;
+    for (size_t k = 0; k < view_.nodes.size(); ++k) {
+      if (view_.nodes[k].kind != FrameNode::Kind::System) continue;
+      const fe::Value* list = ev_.value(view_.nodes[k].object, "kinematically_controlled");
+      if (!list || list->kind != fe::Value::Kind::Array) continue;
+      for (const fe::Value& v : list->array) {
+        auto it = v.kind == fe::Value::Kind::Object ? node_of.find(v.object) : node_of.end();
+        if (it != node_of.end() && view_.nodes[it->second].kind == FrameNode::Kind::Body)
+          view_.nodes[it->second].body.dynamic = false;
+      }
     }
   }
 

@@ -679,7 +679,7 @@ TEST_F(Mjcf, JointedBodyInitialVelocityIsWarned) {
   emit("jointed_velocity");
   expect_diag_containing(
       fe::DiagCode::MjcfUnmapped,
-      "`arm.kinematics.initial_local_*_velocity`: only a free body's initial velocity maps");
+      "`arm.kinematics.initial_local_*_velocity`: a body moving through its joints has no initial velocity");
   EXPECT_EQ(xml_.find("keyframe"), std::string::npos);
   accept_all_diags();
 }

@@ -279,7 +279,8 @@ TEST_F(Signals, ManifestIsDeterministicAndListsEveryBinding) {
       first.find("{\"path\": \"motorSpeedInput\", \"direction\": \"input\", \"type\": "
                  "\"Physics.Signals.AngularVelocity1DInput\", \"value\": \"real\", \"unit\": \"rad/s\", "
                  "\"enabled\": true, \"quantity\": \"ctrl\", \"object\": \"actuator\", \"names\": "
-                 "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"low\": 0, \"high\": 0, "
+                 "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"initial_vector\": [], "
+                 "\"low\": 0, \"high\": 0, "
                  "\"reason\": \"\"}"),
       std::string::npos)
       << first;
