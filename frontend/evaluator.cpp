@@ -558,6 +558,7 @@ std::string Evaluator::slot_path(ObjectId id, std::string_view slot) const {
 // ---------------------------------------------------------------------------------------- evaluation
 
 const Value& Evaluator::value(ObjectId object, uint32_t slot) {
+  if (tracking_) graph_.at(object).slots[slot].used = true;
   if (graph_.at(object).slots[slot].state != Slot::State::Done) evaluate_slot(object, slot);
   return graph_.at(object).slots[slot].value;
 }
@@ -565,7 +566,9 @@ const Value& Evaluator::value(ObjectId object, uint32_t slot) {
 const Value* Evaluator::value(ObjectId object, std::string_view slot) {
   const SlotIndex& index = *graph_.at(object).index;
   auto it = index.find(slot);
-  return it == index.end() ? nullptr : &value(object, it->second);
+  if (it == index.end()) return nullptr;
+  graph_.at(object).slots[it->second].used = true;  // natives and the pipeline read by name
+  return &value(object, it->second);
 }
 
 void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
@@ -816,6 +819,7 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
       const SlotIndex& index = *graph_.at(scope.self).index;
       auto it = index.find(e.text);
       if (it != index.end()) {
+        graph_.at(scope.self).slots[it->second].used = true;  // an expression depends on it
         entity.value = value(scope.self, it->second);
         if (entity.value.kind == Value::Kind::Unset) {
           sink_.report(DiagCode::UnsetAttribute, e.range,
@@ -928,6 +932,7 @@ Value Evaluator::member_of(const Value& object, std::string_view name, SourceRan
     return Value::error();
   }
   const uint32_t index = it->second;
+  graph_.at(object.object).slots[index].used = true;  // an expression depends on it
   Value v = value(object.object, index);
   if (v.kind == Value::Kind::Unset) {
     sink_.report(DiagCode::UnsetAttribute, where,

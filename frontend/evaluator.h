@@ -80,6 +80,11 @@ class Evaluator {
 
   ObjectGraph& graph() { return graph_; }
   const ObjectGraph& graph() const { return graph_; }
+
+  // Marks attributes read by index as used while on (expressions, natives and reads by name always mark
+  // them): the pipeline turns it on after evaluation, so an attribute never used is one nothing honours
+  // (snap/unread_attributes.h warns about the ones a user set).
+  void track_reads(bool on) { tracking_ = on; }
   Program& program() { return program_; }
   DiagnosticSink& sink() { return sink_; }
   std::string root_name() const;
@@ -91,6 +96,8 @@ class Evaluator {
   Type resolve_type_ref(DocumentInfo* doc, const TypeRef& ref);
 
  private:
+  bool tracking_ = false;
+
   struct Scope {
     DocumentInfo* doc = nullptr;
     ModelInfo* home = nullptr;

@@ -43,6 +43,7 @@ struct Slot {
   enum class State : uint8_t { Pending, Evaluating, Done } state = State::Pending;
   bool owns = false;    // value is an object owned by this slot
   bool preset = false;  // value given directly (initializer or native result), not by an entry
+  bool used = false;    // read by an expression, a native or the pipeline (Evaluator::track_reads)
   Value value;
   // Annotations on the attribute (few have any; shared by instances with one layout).
   std::shared_ptr<std::map<std::string, AnnotationValue, std::less<>>> annotations;

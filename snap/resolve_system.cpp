@@ -1,4 +1,5 @@
 #include "snap/resolve_system.h"
+#include "snap/unread_attributes.h"
 
 #include <filesystem>
 #include <map>
@@ -770,7 +771,11 @@ frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::Ob
 
 ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,
                               frontend::DiagnosticSink& sink) {
-  return SystemBuilder(evaluator, sink).build(root);
+  evaluator.track_reads(true);  // what the builder reads is what the pipeline honours
+  ResolvedSystem system = SystemBuilder(evaluator, sink).build(root);
+  evaluator.track_reads(false);
+  warn_unread_attributes(evaluator, root, system, sink);
+  return system;
 }
 
 Transform joint_offset(const Mate& mate) {

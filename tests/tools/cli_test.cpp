@@ -201,6 +201,38 @@ TEST_F(Cli, StrictTurnsWarningsIntoErrors) {
   EXPECT_NE(err_.str().find(":1:8: error: missing `:`"), std::string::npos) << err_.str();
 }
 
+// An attribute the user sets that nothing maps is a warning at the assignment, naming it: AGX's contact
+// reduction on a contact model. --strict makes it an error and writes nothing.
+TEST_F(Cli, UnmappedAttributeIsWarnedAtTheUsersLine) {
+  const std::string file = write("reduction.openplx",
+                                 "const Steel is Physics.Geometries.Material\n"
+                                 "Ball is Physics3D.Bodies.RigidBody:\n"
+                                 "    inertia.mass: 1\n"
+                                 "    geometry is Physics3D.Geometries.Sphere:\n"
+                                 "        radius: 0.1\n"
+                                 "Scene is Physics3D.System:\n"
+                                 "    ball is Ball\n"
+                                 "    contact is Physics.Interactions.SurfaceContact.Model:\n"
+                                 "        with AGX.ContactReductionBinResolution\n"
+                                 "        bin_resolution: 2\n"
+                                 "        material_1: Steel\n"
+                                 "        material_2: Steel\n"
+                                 "        tangential_restitution: 0\n"
+                                 "        normal_restitution: 0\n");
+  const std::string out = (std::filesystem::path(file).parent_path() / "reduction.xml").string();
+  EXPECT_EQ(run({file, "-o", out}), 0) << err_.str();
+  EXPECT_NE(
+      err_.str().find("reduction.openplx:10:9: warning: `contact.bin_resolution` "
+                      "(AGX.ContactReductionBinResolution) has no MuJoCo counterpart here; it was ignored"),
+      std::string::npos)
+      << err_.str();
+  EXPECT_EQ(err_.str().find("inertia.mass` ("), std::string::npos);  // what maps is not warned
+  std::filesystem::remove(out);
+  EXPECT_EQ(run({file, "-o", out, "--strict"}), 1);
+  EXPECT_NE(err_.str().find("reduction.openplx:10:9: error: `contact.bin_resolution`"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // OpenPLX has no time-step setting: --timestep sets MuJoCo's, and the emitter's stability caps follow it (a
 // velocity motor's constraint relaxes in two steps, so its solreffriction time is 2 h).
 TEST_F(Cli, TimestepOptionSetsMuJoCosStep) {

@@ -1,0 +1,70 @@
+#include "snap/unread_attributes.h"
+
+#include <set>
+#include <vector>
+
+namespace openplx::snap {
+
+namespace fe = openplx::frontend;
+
+namespace {
+
+bool in_bundle(const fe::ModelInfo* model) {
+  return model && model->doc && model->doc->bundle;
+}
+
+// 1: below `root` and mapped, 0: elsewhere or inside a part already warned as having no counterpart.
+std::vector<signed char> reachable(const fe::ObjectGraph& graph, fe::ObjectId root,
+                                   const std::set<fe::ObjectId>& left_out) {
+  const size_t count = graph.objects.size();
+  std::vector<signed char> state(count, -1);
+  state[root] = 1;
+  for (size_t id = 0; id < count; ++id) {
+    std::vector<size_t> chain;
+    size_t at = id;
+    while (state[at] < 0) {
+      chain.push_back(at);
+      const fe::Object& obj = graph.at(static_cast<fe::ObjectId>(at));
+      if (obj.owner == fe::kNoObject || left_out.count(static_cast<fe::ObjectId>(at))) {
+        state[at] = 0;
+        break;
+      }
+      at = obj.owner;
+    }
+    for (size_t c : chain) state[c] = state[at] == 1 && !left_out.count(static_cast<fe::ObjectId>(c)) ? 1 : 0;
+  }
+  return state;
+}
+
+}  // namespace
+
+void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, const ResolvedSystem& system,
+                            fe::DiagnosticSink& sink) {
+  const fe::ObjectGraph& graph = evaluator.graph();
+  if (root == fe::kNoObject || system.nodes.empty()) return;  // not a physical system: nothing maps it
+  std::set<fe::ObjectId> left_out;  // warned whole ("it and its parts were left out")
+  for (const Unsupported& u : system.unsupported) left_out.insert(u.object);
+  const std::vector<signed char> mapped = reachable(graph, root, left_out);
+  std::set<const fe::Entry*> warned;  // one warning per assignment, however many instances share it
+  for (size_t id = 0; id < graph.objects.size(); ++id) {
+    if (mapped[id] != 1) continue;
+    const fe::Object& obj = graph.at(static_cast<fe::ObjectId>(id));
+    // Math values (vectors, quaternions, transforms) are read whole where they matter; an unread one is
+    // warned once at the attribute holding it, not per component.
+    if (obj.type && obj.type->qualified.rfind("Math.", 0) == 0) continue;
+    for (uint32_t k = 0; k < obj.slots.size(); ++k) {
+      const fe::Slot& slot = obj.slots[k];
+      const fe::Entry* entry = slot.binding.entry;
+      // A bundle's attribute, assigned in the user's own text, that the resolver never looked at.
+      if (!entry || entry->from_declaration || entry->kind != fe::Entry::Kind::Value) continue;
+      if (!in_bundle(slot.declared_in) || in_bundle(slot.binding.model)) continue;
+      if (slot.used || !warned.insert(entry).second) continue;
+      sink.report(fe::DiagCode::MjcfUnmapped, entry->member->range,
+                  "`" + graph.path(static_cast<fe::ObjectId>(id)) + (id == root ? "" : ".") +
+                      std::string(slot.name) + "` (" + slot.declared_in->qualified +
+                      ") has no MuJoCo counterpart here; it was ignored");
+    }
+  }
+}
+
+}  // namespace openplx::snap
