@@ -233,6 +233,16 @@ TEST_F(Cli, UnmappedAttributeIsWarnedAtTheUsersLine) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// signal_test under --strict: its velocity motor keeps AGX's default gain, which a motor constraint needs no
+// warning for, so nothing is left to turn into an error.
+TEST_F(Cli, SignalTestPassesStrict) {
+  const std::string file = std::string(OPENPLX_CORPUS_DIR) + "/agxunity/signal_test.openplx";
+  const std::string out = (std::filesystem::path(write("x.txt", "")).parent_path() / "signal.xml").string();
+  EXPECT_EQ(run({file, "-o", out, "--strict"}), 0) << err_.str();
+  EXPECT_EQ(err_.str(), "");
+  EXPECT_TRUE(std::filesystem::exists(out));
+}
+
 // OpenPLX has no time-step setting: --timestep sets MuJoCo's, and the emitter's stability caps follow it (a
 // velocity motor's constraint relaxes in two steps, so its solreffriction time is 2 h).
 TEST_F(Cli, TimestepOptionSetsMuJoCosStep) {
