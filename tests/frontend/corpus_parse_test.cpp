@@ -23,7 +23,9 @@ struct Input {
 };
 
 // GoogleTest prints a parameter in test listings (and so in ctest's names): the golden path, not raw bytes.
-void PrintTo(const Input& input, std::ostream* os) { *os << input.golden_name; }
+void PrintTo(const Input& input, std::ostream* os) {
+  *os << input.golden_name;
+}
 
 std::vector<Input> collect(const fs::path& root, const std::string& prefix) {
   std::vector<Input> inputs;
