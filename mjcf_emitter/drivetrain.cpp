@@ -24,6 +24,10 @@ void Lowering::emit_drivetrain(Element& root) {
   Element* equality = root.child("equality");
   Element& tendons = root.add("tendon");
   for (const sn::DriveCoupling& c : view_.couplings) {
+    if (c.kind == sn::DriveCoupling::Kind::Clutch || c.kind == sn::DriveCoupling::Kind::Brake) {
+      emit_friction_coupling(tendons, c);
+      continue;
+    }
     const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });
     const size_t needed = c.kind == sn::DriveCoupling::Kind::Actuator ? 1
                           : c.kind == sn::DriveCoupling::Kind::Gear   ? 2
@@ -79,8 +83,37 @@ void Lowering::emit_drivetrain(Element& root) {
         drive_edges_.push_back({c.shafts[0], c.shafts[2], 1 / c.ratio, nullptr});
         break;
       }
+      case sn::DriveCoupling::Kind::Clutch:
+      case sn::DriveCoupling::Kind::Brake:
+        break;  // emit_friction_coupling
     }
   }
+}
+
+// A clutch or brake: dry friction between its shafts (a brake: against the ground where a connector is on no
+// shaft), as a fixed tendon whose friction loss is the torque it can carry, torque_capacity * engagement
+// (rigid rows, like the motors'). An automatic one starts at 1 or 0 as initially engaged; the runtime ramps
+// it when its engage input switches.
+void Lowering::emit_friction_coupling(Element& tendons, const sn::DriveCoupling& c) {
+  std::vector<int> shafts;
+  for (int s : c.shafts) {
+    if (s >= 0) shafts.push_back(s);
+  }
+  const bool clutch = c.kind == sn::DriveCoupling::Kind::Clutch;
+  if (shafts.empty() || (clutch && shafts.size() != 2) || shafts.size() > 2) {
+    warn(c.where, "`" + c.path + "` does not connect " +
+                      (clutch ? "two drivetrain shafts" : "a drivetrain shaft") + "; it was left out");
+    return;
+  }
+  const double engagement = c.automatic ? (c.initially_engaged ? 1.0 : 0.0) : c.engagement_fraction;
+  Element& tendon = tendons.add("fixed");
+  tendon.set("name", name(c.path))
+      .set("frictionloss", c.torque_capacity * std::clamp(engagement, 0.0, 1.0))
+      .set("solreffriction", rigid_solref())
+      .set("solimpfriction", rigid_solimp());
+  for (size_t k = 0; k < shafts.size(); ++k)
+    tendon.add("joint").set("joint", shaft_joints_[shafts[k]]).set("coef", k == 0 ? 1.0 : -1.0);
+  friction_couplings_[index_in(view_.couplings, c)] = name(c.path);
 }
 
 // A motor on a shaft: a velocity motor is a motor constraint (velocity_motors.cpp) on the shaft's joint, its

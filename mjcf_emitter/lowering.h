@@ -152,6 +152,7 @@ class Lowering {
   // ------------------------------------------------------------------------------- drivetrain.cpp
   void emit_drivetrain(Element& root);
   void emit_shaft_motor(Element& root, const sn::Interaction1D& i);
+  void emit_friction_coupling(Element& tendons, const sn::DriveCoupling& c);
   double drivetrain_inertia(int start);
 
   // ---------------------------------------------------------------------------------- signals.cpp
@@ -159,6 +160,7 @@ class Lowering {
   SignalBinding bind(const sn::Signal& s);
   SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
   SignalBinding bind_enabled(SignalBinding b, int k);
+  SignalBinding bind_coupling(SignalBinding b, std::string_view stem, int k);
   SignalBinding bind_mate(SignalBinding b, std::string_view stem, int m);
   SignalBinding bind_body(SignalBinding b, std::string_view stem, int n);
   SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c);
@@ -196,9 +198,8 @@ class Lowering {
   std::map<int, MassProperties> body_mass_;
   std::map<int, std::vector<int>> tree_children_;
   std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and reference) name
-  std::map<int, std::pair<double, double>>
-      effort_ranges_;  // motor or spring -> its effort range enabled             // actuator indices of
-                       // velocity motors' centring forces
+  std::map<int, std::pair<double, double>> effort_ranges_;      // motor or spring -> its effort range enabled
+  std::map<int, std::string> friction_couplings_;               // clutch or brake coupling -> its tendon
   std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
   std::set<std::string> emitted_geoms_;
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;

@@ -132,6 +132,12 @@ std::string_view to_string(Quantity quantity) {
       return "actuator_force";
     case Quantity::MotorForce:
       return "motor_force";
+    case Quantity::EngagementFraction:
+      return "engagement_fraction";
+    case Quantity::Engaged:
+      return "engaged";
+    case Quantity::TendonVelocity:
+      return "tendon_velocity";
     case Quantity::JointLimitForce:
       return "joint_limit_force";
     case Quantity::BodyPosition:

@@ -42,6 +42,10 @@ enum class Quantity {
   InteractionEnabled,  // an interaction's enabled state (Bool, also readable); off zeroes what it acts with:
                        // Tendon: friction loss and bias; Actuator: force range; Joint (a range): jnt_limited.
                        // `low`/`high` hold its effort range (its limits for a range) when enabled
+  EngagementFraction,  // Tendon (clutch or brake): friction loss = `high` (its capacity) * fraction (Real,
+                       // readable)
+  Engaged,  // Tendon (automatic clutch or brake): engaging ramps the fraction to 1 over `low` seconds,
+            // disengaging to 0 over `high`; `initial` is whether it starts engaged, initial_vector {capacity}
   // --- outputs
   JointPosition,    // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
   JointVelocity,    // Joint: d->qvel[jnt_dofadr[id]], times `sign`
@@ -49,6 +53,7 @@ enum class Quantity {
   MotorForce,       // Tendon (velocity motor): the friction row's force (efc rows of type
                     // mjCNSTR_FRICTION_TENDON) plus the bias actuator's force, on the motor joint
   JointLimitForce,  // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
+  TendonVelocity,   // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
   BodyPosition,     // Body: d->xpos (the body frame's origin, world)
   BodyRPY,          // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
   BodyLinearVelocity,      // Body: the body frame origin's world linear velocity

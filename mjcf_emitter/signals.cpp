@@ -47,6 +47,8 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
       break;
     case Source::Connector:
       return bind_connector(std::move(b), stem, s.source);
+    case Source::Coupling:
+      return bind_coupling(std::move(b), stem, s.source);
     case Source::Other:
       break;
   }
@@ -119,6 +121,33 @@ SignalBinding Lowering::bind_enabled(SignalBinding b, int k) {
     return b;
   }
   return unmapped(std::move(b), "`" + i.path + "` was not emitted");
+}
+
+// A clutch's or brake's signals: its torque (the friction row's force), slip velocity, engagement.
+SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, int k) {
+  const sn::DriveCoupling& c = view_.couplings[k];
+  auto tendon = friction_couplings_.find(k);
+  if (tendon == friction_couplings_.end())
+    return unmapped(std::move(b), "`" + c.path + "` has no MuJoCo element that carries it");
+  if (stem == "Torque1D" && !b.input)
+    return mapped(std::move(b), Quantity::MotorForce, MjObject::Tendon, tendon->second);
+  if (stem == "RelativeVelocity1D" && !b.input)
+    return mapped(std::move(b), Quantity::TendonVelocity, MjObject::Tendon, tendon->second);
+  if (stem == "Fraction" && (!c.automatic || !b.input)) {  // an automatic one ramps its own
+    b = mapped(std::move(b), Quantity::EngagementFraction, MjObject::Tendon, tendon->second);
+    b.initial = c.engagement_fraction;
+    b.high = c.torque_capacity;
+    return b;
+  }
+  if (any_of(stem, {"Engage", "Engaged"}) && c.automatic) {
+    b = mapped(std::move(b), Quantity::Engaged, MjObject::Tendon, tendon->second);
+    b.initial = c.initially_engaged ? 1.0 : 0.0;
+    b.low = c.engagement_duration;
+    b.high = c.disengagement_duration;
+    b.initial_vector = {c.torque_capacity};
+    return b;
+  }
+  return unmapped(std::move(b), "`" + c.path + "`'s " + std::string(stem) + " signal is not mapped yet");
 }
 
 SignalBinding Lowering::bind_mate(SignalBinding b, std::string_view stem, int m) {
@@ -246,6 +275,9 @@ void Lowering::add_sensor(SignalBinding& b) {
       break;
     case Quantity::JointLimitForce:
       sensor = {"jointlimitfrc", nullptr, "joint"};
+      break;
+    case Quantity::TendonVelocity:
+      sensor = {"tendonvel", nullptr, "tendon"};
       break;
     case Quantity::ActuatorForce:
       sensor = {"actuatorfrc", nullptr, "actuator"};

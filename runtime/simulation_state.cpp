@@ -153,6 +153,15 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
         if (b.quantity == Quantity::SiteAngularVelocity) s.direct3 = d->cvel + 6 * m->site_bodyid[id];
       }
     }
+    if (b.quantity == Quantity::Engaged && !s.ids.empty() && s.ids.front() >= 0 &&
+        b.initial_vector.size() == 1) {
+      Engagement& e = engagements[s.ids.front()];
+      e.engaged = b.initial != 0;
+      e.fraction = e.engaged ? 1.0 : 0.0;
+      e.capacity = b.initial_vector[0];
+      e.engage_time = b.low;
+      e.disengage_time = b.high;
+    }
     if (b.quantity == Quantity::MotorForce)
       s.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
     s.binding = std::move(b);
@@ -260,6 +269,7 @@ void SimulationState::step() {
   mj_step2(m, d);
   cache_constraint_forces();
   if (!post_step_signals.empty()) compute_post_step();
+  ramp_engagements();
   if (kinematic) {
     const mjtNum h = m->opt.timestep;
     for (int k = 0; k < m->nmocap; ++k) {
@@ -275,6 +285,19 @@ void SimulationState::step() {
     }
   }
   mj_step1(m, d);
+}
+
+// Automatic clutches and brakes move their engagement toward engaged (1) or not (0) at the rate their
+// durations give; the friction rows mj_step1 builds next carry capacity * engagement.
+void SimulationState::ramp_engagements() {
+  const double h = m->opt.timestep;
+  for (auto& [tendon, e] : engagements) {
+    const double target = e.engaged ? 1.0 : 0.0, time = e.engaged ? e.engage_time : e.disengage_time;
+    const double change = time > 0 ? h / time : 1.0;
+    e.fraction =
+        target > e.fraction ? std::min(target, e.fraction + change) : std::max(target, e.fraction - change);
+    m->tendon_frictionloss[tendon] = e.capacity * e.fraction;
+  }
 }
 
 // Constraint forces belong to the rows mj_step1 builds; the next mj_step1 rebuilds the rows, so the forces
@@ -355,6 +378,13 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       effort_switch(s).enabled = values[0] != 0;
       apply(s);
       return;
+    case Quantity::EngagementFraction:
+      m->tendon_frictionloss[id] = b.high * std::clamp(values[0], 0.0, 1.0);
+      stale = true;  // friction rows are built in mj_step1
+      return;
+    case Quantity::Engaged:
+      engagements.at(id).engaged = values[0] != 0;  // ramped from the next step on
+      return;
     case Quantity::EqualityActive:
       for (int e : s.ids) m->eq_active[e] = values[0] != 0;
       stale = true;  // constraint rows are built in mj_step1
@@ -427,6 +457,15 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       return;
     case Quantity::InteractionEnabled:
       out[0] = switches.at({object_type(b.object), id}).enabled ? 1 : 0;
+      return;
+    case Quantity::EngagementFraction:
+      out[0] = b.high > 0 ? m->tendon_frictionloss[id] / b.high : 0.0;
+      return;
+    case Quantity::Engaged:
+      out[0] = engagements.at(id).engaged ? 1 : 0;
+      return;
+    case Quantity::TendonVelocity:
+      out[0] = d->ten_velocity[id];
       return;
     case Quantity::EqualityActive:
       out[0] = m->eq_active[id] ? 1 : 0;

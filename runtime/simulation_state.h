@@ -52,6 +52,11 @@ struct SimulationState {
   std::vector<int> constraint_signals;    // signals reading constraint forces (joint limits, motors)
   std::vector<double> constraint_forces;  // per signal: the constraint force of the step just taken
   std::map<std::pair<int, int>, EffortSwitch> switches;  // by (mjtObj, id)
+  struct Engagement {                                    // an automatic clutch or brake (Quantity::Engaged)
+    bool engaged = false;
+    double fraction = 0, capacity = 0, engage_time = 0, disengage_time = 0;
+  };
+  std::map<int, Engagement> engagements;   // by tendon id
   std::vector<int> post_step_signals;      // requested outputs computed after each step (no sensor)
   std::vector<Eigen::Vector3d> post_step;  // per signal: their values
 
@@ -64,6 +69,7 @@ struct SimulationState {
   int find(std::string_view name, bool input) const;  // throws SignalError
   void step();
   void cache_constraint_forces();
+  void ramp_engagements();
   void init_switches();
   EffortSwitch& effort_switch(const ResolvedSignal& s);
   void apply(const ResolvedSignal& s);

@@ -42,6 +42,8 @@ class SystemBuilder {
     drive_actuator_ = program.loaded_model("DriveTrain.Actuator");
     motor1d_ = program.loaded_model("Physics1D.Interactions.RotationalVelocityMotor");
     torque_motor1d_ = program.loaded_model("DriveTrain.TorqueMotor");
+    clutch_ = program.loaded_model("DriveTrain.ManualClutch");
+    brake_ = program.loaded_model("DriveTrain.ManualBrake");
     mimic_ = program.loaded_model("Urdf.Mimic");
     joint_properties_ = program.loaded_model("Urdf.JointProperties");
     package_path_ = program.loaded_model("Urdf.PackagePath");
@@ -52,8 +54,8 @@ class SystemBuilder {
          {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
           "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.LinearBody",
           "DriveTrain.ViscousGear", "DriveTrain.TorqueLimitedSlipDifferential", "DriveTrain.GearBox",
-          "DriveTrain.ManualClutch", "DriveTrain.ManualBrake", "DriveTrain.EmpiricalTorqueConverter",
-          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.PowerSource"}) {
+          "DriveTrain.EmpiricalTorqueConverter", "Physics1D.Interactions.LinearVelocityMotor",
+          "DriveTrain.PowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
@@ -149,6 +151,8 @@ class SystemBuilder {
         using Kind = DriveCoupling::Kind;
         const Kind kind = is(obj, gear_)           ? Kind::Gear
                           : is(obj, differential_) ? Kind::Differential
+                          : is(obj, clutch_)       ? Kind::Clutch
+                          : is(obj, brake_)        ? Kind::Brake
                                                    : Kind::Actuator;
         view_.couplings.push_back({kind,
                                    id,
@@ -158,6 +162,7 @@ class SystemBuilder {
                                    real(id, kind == Kind::Differential ? "gear_ratio" : "ratio", 1.0),
                                    kind == Kind::Differential && in_.boolean(id, "locked_up").value_or(false),
                                    where_of(id)});
+        if (kind == Kind::Clutch || kind == Kind::Brake) read_friction_coupling(id, view_.couplings.back());
         break;
       }
       case Role::Kind::Node:
@@ -256,21 +261,22 @@ class SystemBuilder {
     }
     auto sub = [&](const fe::ModelInfo* m) { return m && type->is_subtype_of(m); };
     using K = Role::Kind;
-    role.kind = sub(mimic_)                                                ? K::Mimic
-                : sub(joint_properties_)                                   ? K::JointProperties
-                : sub(package_path_)                                       ? K::PackagePath
-                : sub(collision_filter_)                                   ? K::CollisionFilter
-                : sub(shaft_)                                              ? K::Shaft
-                : sub(gear_) || sub(differential_) || sub(drive_actuator_) ? K::Coupling
-                : sub(system_) || sub(body_)                               ? K::Node
-                : sub(connector_)                                          ? K::Connector
-                : sub(mate_)                                               ? K::Mate
-                : sub(contact_geometry_) || sub(visual_geometry_)          ? K::Geometry
-                : sub(interaction1d_)                                      ? K::Interaction
-                : sub(input_) || sub(output_)                              ? K::Signal
-                : sub(visual_material_)                                    ? K::VisualMaterial
-                : sub(contact_model_)                                      ? K::ContactModel
-                                                                           : K::None;
+    role.kind = sub(mimic_)              ? K::Mimic
+                : sub(joint_properties_) ? K::JointProperties
+                : sub(package_path_)     ? K::PackagePath
+                : sub(collision_filter_) ? K::CollisionFilter
+                : sub(shaft_)            ? K::Shaft
+                : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_)
+                    ? K::Coupling
+                : sub(system_) || sub(body_)                      ? K::Node
+                : sub(connector_)                                 ? K::Connector
+                : sub(mate_)                                      ? K::Mate
+                : sub(contact_geometry_) || sub(visual_geometry_) ? K::Geometry
+                : sub(interaction1d_)                             ? K::Interaction
+                : sub(input_) || sub(output_)                     ? K::Signal
+                : sub(visual_material_)                           ? K::VisualMaterial
+                : sub(contact_model_)                             ? K::ContactModel
+                                                                  : K::None;
     return role;
   }
 
@@ -409,6 +415,8 @@ class SystemBuilder {
     for (DriveCoupling& c : view_.couplings) {
       switch (c.kind) {
         case DriveCoupling::Kind::Gear:
+        case DriveCoupling::Kind::Clutch:
+        case DriveCoupling::Kind::Brake:
           c.shafts = connectors(c.object);
           break;
         case DriveCoupling::Kind::Differential:
@@ -435,6 +443,17 @@ class SystemBuilder {
       const std::vector<int> on = connectors(i.object);
       i.shaft = on.size() == 1 ? on[0] : -1;
     }
+  }
+
+  // A clutch or brake: its capacity and engagement; automatic ones (with durations) engage by their input.
+  void read_friction_coupling(fe::ObjectId id, DriveCoupling& c) {
+    c.torque_capacity = real(id, "torque_capacity", 0.0);
+    c.engagement_fraction = real(id, "initial_engagement_fraction", 1.0);
+    c.automatic = ev_.graph().at(id).has("engagement_duration");
+    if (!c.automatic) return;
+    c.initially_engaged = in_.boolean(id, "initially_engaged").value_or(false);
+    c.engagement_duration = real(id, "engagement_duration", 0.1);
+    c.disengagement_duration = real(id, "disengagement_duration", 0.1);
   }
 
   // Physics3D.System.kinematically_controlled (deprecated for RigidBody.is_dynamic, still used): the bodies
@@ -546,6 +565,7 @@ class SystemBuilder {
     auto all = [](const auto&) { return true; };
     add(SignalSource::Connector, view_.connectors, all);
     add(SignalSource::Shaft, view_.shafts, all);
+    add(SignalSource::Coupling, view_.couplings, all);
     add(SignalSource::Body, view_.nodes, [](const FrameNode& n) { return n.kind == FrameNode::Kind::Body; });
     add(SignalSource::Mate, view_.mates, all);
     add(SignalSource::Interaction, view_.interactions, all);
@@ -743,6 +763,8 @@ class SystemBuilder {
   std::unordered_map<const fe::ModelInfo*, Role> roles_;
   fe::ModelInfo* shaft_ = nullptr;
   fe::ModelInfo* torque_motor1d_ = nullptr;
+  fe::ModelInfo* clutch_ = nullptr;
+  fe::ModelInfo* brake_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;
   fe::ModelInfo* differential_ = nullptr;
   fe::ModelInfo* drive_actuator_ = nullptr;

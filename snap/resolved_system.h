@@ -138,7 +138,7 @@ struct Interaction1D {
 };
 
 // What an OpenPLX signal's `source` is in this system.
-enum class SignalSource { None, Interaction, Mate, Body, Shaft, Connector, Other };
+enum class SignalSource { None, Interaction, Mate, Body, Shaft, Connector, Coupling, Other };
 
 // An OpenPLX input or output signal of the tree.
 struct Signal {
@@ -229,7 +229,7 @@ struct Shaft {
 
 // How drivetrain shafts are tied to each other and to 3-D mates.
 struct DriveCoupling {
-  enum class Kind { Actuator, Gear, Differential };
+  enum class Kind { Actuator, Gear, Differential, Clutch, Brake };
   Kind kind = Kind::Gear;
   ObjectRef object;
   std::string path;
@@ -238,6 +238,13 @@ struct DriveCoupling {
   double ratio = 1.0;       // Gear: ratio; Differential: gear_ratio
   bool locked_up = false;   // Differential
   frontend::SourceRange where;
+  // Clutch, Brake: dry friction of capacity torque_capacity * engagement. Manual ones engage by their
+  // fraction; automatic ones ramp between 0 and 1 over their durations when engaged or disengaged.
+  double torque_capacity = 0;
+  double engagement_fraction = 1;  // initial_engagement_fraction
+  bool automatic = false;
+  bool initially_engaged = false;  // automatic
+  double engagement_duration = 0.1, disengagement_duration = 0.1;
 };
 
 // A joint that follows another (Urdf.Mimic): follower = multiplier * leader + offset.

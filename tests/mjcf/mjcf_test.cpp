@@ -537,14 +537,11 @@ TEST_F(Mjcf, UnmappedDriveTrainPartsAreWarned) {
       load("Scene is Physics3D.System:\n"
            "    a is DriveTrain.Shaft\n"
            "    b is DriveTrain.Shaft\n"
-           "    clutch is DriveTrain.ManualClutch:\n"
-           "        torque_capacity: 10\n"
-           "        initial_engagement_fraction: 1\n"
-           "        min_relative_slip_ratio: 0.01\n"
+           "    gear is DriveTrain.ViscousGear:\n"
            "        connectors: [a.output, b.input]\n"))
       << all_diags();
-  emit("clutch");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`clutch` is a DriveTrain.ManualClutch");
+  emit("viscous");
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`gear` is a DriveTrain.ViscousGear");
   accept_all_diags();
 }
 

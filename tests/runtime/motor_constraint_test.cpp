@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "openplx/runtime/simulation.h"
 #include "tests/support/scratch_dir.h"
@@ -232,22 +234,95 @@ TEST(MotorConstraint, TheInitialKeyframeStartsMotorsInPlainMuJoCo) {
 
 namespace {
 
+// drive_train_velocity_input with its text edited: each pair replaces `from` by `to`.
+std::string edited_drive_train(const std::vector<std::pair<std::string, std::string>>& edits) {
+  std::ifstream in(std::string(OPENPLX_CORPUS_DIR) + "/agxunity/drive_train_velocity_input.openplx");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [from, to] : edits) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+// Loads `text`, sets `input` to `value` and simulates 0.5 s.
+template <typename V>
+rt::Simulation half_second_after(const openplx::testing::ScratchDir& dir, const std::string& text,
+                                 const char* input, V value) {
+  rt::Simulation sim = load(dir, text);
+  sim.input(input).set(value);
+  sim.advance(0.5);
+  return sim;
+}
+
+// A brake holding the shaft the 10 kg rod hangs from (gravity torque 30.2 N m at its initial angle): at
+// 1000 N m it holds the hinge (|w| <= 1e-4 after 0.5 s) carrying the rod's torque; at fraction
+// 0.01 (10 N m) it slips carrying exactly 10 N m; at 0 the rod swings freely.
+TEST(DriveTrainFriction, BrakeHoldsWithinItsCapacityAndSlipsBeyond) {
+  const std::string text = edited_drive_train(
+      {{"    motor is Physics1D.Interactions.RotationalVelocityMotor:\n        connectors: [shaft.input]\n",
+        "    brake is DriveTrain.ManualBrake:\n        torque_capacity: 1000\n"
+        "        initial_engagement_fraction: 1\n        min_relative_slip_ratio: 0.01\n"
+        "        connectors: [shaft.input]\n"},
+       {"    velocity_motor_input is Physics.Signals.AngularVelocity1DInput:\n        source: pendulum.motor",
+        "    brake_torque is Physics.Signals.Torque1DOutput:\n        source: pendulum.brake"}});
+  for (const double fraction : {1.0, 0.01, 0.0}) {
+    SCOPED_TRACE(fraction);
+    const openplx::testing::ScratchDir dir;
+    rt::Simulation sim = half_second_after(dir, text, "pendulum.brake.engagement_fraction_input", fraction);
+    const double speed = sim.output("pendulum.hinge.angular_velocity_output").real();
+    const double torque = sim.output("brake_torque").real();
+    if (fraction == 1.0) {
+      EXPECT_LT(std::abs(speed), 1e-4);
+      EXPECT_GT(std::abs(torque), 10.0);  // it carries the rod (measured 30.2 N m), within its capacity
+      EXPECT_LT(std::abs(torque), 1000.0);
+    } else {
+      EXPECT_GT(std::abs(speed), 1.0);
+      EXPECT_NEAR(std::abs(torque), 1000 * fraction, 1e-9);
+    }
+    EXPECT_NEAR(sim.output("pendulum.brake.engagement_fraction_output").real(), fraction, 1e-12);
+  }
+}
+
+// An automatic clutch between the motor's shaft and the hinge's: engaged, it carries the motor's torque to
+// the hinge (1 rad/s, more than 1 N m through it); disengaged (ramped out over 0.1 s), it carries nothing
+// and the rod swings free of the motor.
+TEST(DriveTrainFriction, ClutchTransmitsWhenEngaged) {
+  const std::string text = edited_drive_train(
+      {{"    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: shaft.output",
+        "    output_shaft is DriveTrain.Shaft:\n        inertia.inertia: 0.1\n"
+        "    clutch is DriveTrain.AutomaticClutch:\n        torque_capacity: 100\n"
+        "        initial_engagement_fraction: 1\n        min_relative_slip_ratio: 0.01\n"
+        "        initially_engaged: true\n        connectors: [shaft.output, output_shaft.input]\n"
+        "    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: output_shaft.output"}});
+  for (const bool engaged : {true, false}) {
+    SCOPED_TRACE(engaged);
+    const openplx::testing::ScratchDir dir;
+    rt::Simulation sim = half_second_after(dir, text, "pendulum.clutch.engage_input", engaged);
+    const double speed = sim.output("pendulum.hinge.angular_velocity_output").real();
+    const double torque = sim.output("pendulum.clutch.torque_output").real();
+    EXPECT_EQ(sim.output("pendulum.clutch.engaged_output").boolean(), engaged);
+    if (engaged) {
+      EXPECT_NEAR(speed, 1.0, 1e-4);
+      EXPECT_GT(std::abs(torque), 1.0);
+      EXPECT_LT(std::abs(sim.output("pendulum.clutch.slip_velocity_output").real()), 1e-4);
+    } else {
+      EXPECT_LT(std::abs(torque), 1.0);
+      EXPECT_LT(speed, -1.0);  // the rod falls back, free of the motor
+    }
+  }
+}
+
 // drive_train_torque_input (issue 15's case): drive_train_velocity_input with a DriveTrain.TorqueMotor on
 // the shaft. -1000 N m for 1 s through the rigid hinge actuator spins the hinge past -10 rad/s: about
 // -1000 N m s / (1 kg m^2 shaft + 10 kg rod about its end, m L^2 / 3 = 3.3 kg m^2), less gravity's share.
 TEST(DriveTrainMotor, TorqueMotorOnAShaftDrivesTheHinge) {
   const openplx::testing::ScratchDir dir;
-  std::ifstream in(std::string(OPENPLX_CORPUS_DIR) + "/agxunity/drive_train_velocity_input.openplx");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"motor is Physics1D.Interactions.RotationalVelocityMotor:",
-                                            "motor is DriveTrain.TorqueMotor:"},
-        {"velocity_motor_input is Physics.Signals.AngularVelocity1DInput:",
-         "torque_input is Physics.Signals.Torque1DInput:"}}) {
-    const size_t at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
+  const std::string text = edited_drive_train(
+      {{"motor is Physics1D.Interactions.RotationalVelocityMotor:", "motor is DriveTrain.TorqueMotor:"},
+       {"velocity_motor_input is Physics.Signals.AngularVelocity1DInput:",
+        "torque_input is Physics.Signals.Torque1DInput:"}});
   rt::Simulation sim = load(dir, text);
   sim.input("torque_input").set(-1000.0);
   sim.advance(1.0);
