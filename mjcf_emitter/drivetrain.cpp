@@ -65,6 +65,7 @@ void Lowering::emit_drivetrain(Element& root) {
             .set("joint1", shaft_joints_[c.shafts[1]])
             .set("joint2", shaft_joints_[c.shafts[0]])
             .set("polycoef", "0 " + number(1 / c.ratio) + " 0 0 0");
+        gear_equalities_[index_in(view_.couplings, c)] = name(c.path);
         drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
         break;
       case sn::DriveCoupling::Kind::Differential: {

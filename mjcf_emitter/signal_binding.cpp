@@ -138,6 +138,10 @@ std::string_view to_string(Quantity quantity) {
       return "engaged";
     case Quantity::TendonVelocity:
       return "tendon_velocity";
+    case Quantity::GearRatio:
+      return "gear_ratio";
+    case Quantity::EqualityForce:
+      return "equality_force";
     case Quantity::JointLimitForce:
       return "joint_limit_force";
     case Quantity::BodyPosition:

@@ -46,6 +46,8 @@ enum class Quantity {
                        // readable)
   Engaged,  // Tendon (automatic clutch or brake): engaging ramps the fraction to 1 over `low` seconds,
             // disengaging to 0 over `high`; `initial` is whether it starts engaged, initial_vector {capacity}
+  GearRatio,  // Equality (a gear's joint equality, joint1 = output, joint2 = input): ratio = 1 / polycoef[1];
+              // writing it re-anchors polycoef[0] so the shafts keep their positions (Real, readable)
   // --- outputs
   JointPosition,    // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
   JointVelocity,    // Joint: d->qvel[jnt_dofadr[id]], times `sign`
@@ -53,6 +55,7 @@ enum class Quantity {
   MotorForce,       // Tendon (velocity motor): the friction row's force (efc rows of type
                     // mjCNSTR_FRICTION_TENDON) plus the bias actuator's force, on the motor joint
   JointLimitForce,  // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
+  EqualityForce,    // Equality: the force of its constraint row (efc type mjCNSTR_EQUALITY) on joint1
   TendonVelocity,   // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
   BodyPosition,     // Body: d->xpos (the body frame's origin, world)
   BodyRPY,          // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)

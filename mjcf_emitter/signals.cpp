@@ -126,6 +126,14 @@ SignalBinding Lowering::bind_enabled(SignalBinding b, int k) {
 // A clutch's or brake's signals: its torque (the friction row's force), slip velocity, engagement.
 SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, int k) {
   const sn::DriveCoupling& c = view_.couplings[k];
+  if (auto gear = gear_equalities_.find(k); gear != gear_equalities_.end()) {
+    if (stem == "Torque1D" && !b.input)  // the torque the equality puts on the output shaft
+      return mapped(std::move(b), Quantity::EqualityForce, MjObject::Equality, gear->second);
+    if (stem == "Fraction") {
+      b.initial = c.ratio;
+      return mapped(std::move(b), Quantity::GearRatio, MjObject::Equality, gear->second);
+    }
+  }
   auto tendon = friction_couplings_.find(k);
   if (tendon == friction_couplings_.end())
     return unmapped(std::move(b), "`" + c.path + "` has no MuJoCo element that carries it");

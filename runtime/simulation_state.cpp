@@ -165,7 +165,8 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
     if (b.quantity == Quantity::MotorForce)
       s.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
     s.binding = std::move(b);
-    if (s.binding.quantity == Quantity::JointLimitForce || s.binding.quantity == Quantity::MotorForce)
+    if (s.binding.quantity == Quantity::JointLimitForce || s.binding.quantity == Quantity::MotorForce ||
+        s.binding.quantity == Quantity::EqualityForce)
       constraint_signals.push_back(static_cast<int>(signals.size()));
     by_name.emplace(s.info.name, static_cast<int>(signals.size()));
     signals.push_back(std::move(s));
@@ -306,8 +307,9 @@ void SimulationState::cache_constraint_forces() {
   for (int index : constraint_signals) {
     const ResolvedSignal& s = signals[static_cast<size_t>(index)];
     const int id = s.ids.front();
-    const int type =
-        s.binding.quantity == Quantity::JointLimitForce ? mjCNSTR_LIMIT_JOINT : mjCNSTR_FRICTION_TENDON;
+    const int type = s.binding.quantity == Quantity::JointLimitForce ? mjCNSTR_LIMIT_JOINT
+                     : s.binding.quantity == Quantity::EqualityForce ? mjCNSTR_EQUALITY
+                                                                     : mjCNSTR_FRICTION_TENDON;
     double total = 0;
     for (int r = 0; r < d->nefc; ++r) {
       if (d->efc_type[r] == type && d->efc_id[r] == id) total += d->efc_force[r];
@@ -385,6 +387,17 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
     case Quantity::Engaged:
       engagements.at(id).engaged = values[0] != 0;  // ramped from the next step on
       return;
+    case Quantity::GearRatio: {
+      if (values[0] == 0) throw SignalError("input `" + s.info.name + "` got a zero gear ratio");
+      // MuJoCo holds q1 - q1_0 = c0 + c1 (q2 - q2_0): a new c1 with c0 chosen so that it holds now keeps the
+      // shafts where they are; from here on their speeds keep the new ratio.
+      const int a1 = m->jnt_qposadr[m->eq_obj1id[id]], a2 = m->jnt_qposadr[m->eq_obj2id[id]];
+      mjtNum* poly = m->eq_data + id * mjNEQDATA;
+      poly[1] = 1.0 / values[0];
+      poly[0] = (d->qpos[a1] - m->qpos0[a1]) - poly[1] * (d->qpos[a2] - m->qpos0[a2]);
+      stale = true;  // equality rows are built in mj_step1
+      return;
+    }
     case Quantity::EqualityActive:
       for (int e : s.ids) m->eq_active[e] = values[0] != 0;
       stale = true;  // constraint rows are built in mj_step1
@@ -481,7 +494,11 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       return;
     case Quantity::JointLimitForce:
     case Quantity::MotorForce:
+    case Quantity::EqualityForce:
       out[0] = constraint_forces[static_cast<size_t>(index)];
+      return;
+    case Quantity::GearRatio:
+      out[0] = 1.0 / m->eq_data[id * mjNEQDATA + 1];
       return;
     case Quantity::BodyPosition:
       put(vec(d->xpos + 3 * id));

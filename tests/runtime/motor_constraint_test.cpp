@@ -314,6 +314,37 @@ TEST(DriveTrainFriction, ClutchTransmitsWhenEngaged) {
   }
 }
 
+// A gear of ratio 2 (input speed over output speed) between the motor's shaft and the hinge's: the hinge
+// turns at 0.5 rad/s and the gear's torque output carries the rod. Its ratio input changes the ratio from
+// the next step on without moving the shafts (the equality is re-anchored): 0.25 rad/s, the angle
+// continuous.
+TEST(DriveTrainGear, RatioAndTorqueSignals) {
+  const openplx::testing::ScratchDir dir;
+  rt::Simulation sim = load(
+      dir,
+      edited_drive_train(
+          {{"    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: shaft.output",
+            "    output_shaft is DriveTrain.Shaft:\n        inertia.inertia: 0.1\n"
+            "    gear is DriveTrain.Gear:\n        ratio: 2\n"
+            "        connectors: [shaft.output, output_shaft.input]\n"
+            "    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: output_shaft.output"}}));
+  rt::Output speed = sim.output("pendulum.hinge.angular_velocity_output");
+  rt::Output angle = sim.output("pendulum.hinge.angle_output");
+  sim.advance(0.2);
+  EXPECT_NEAR(speed.real(), 0.5, 1e-4);
+  EXPECT_EQ(sim.output("pendulum.gear.ratio_output").real(), 2.0);
+  const double torque = sim.output("pendulum.gear.torque_output").real();
+  EXPECT_GT(std::abs(torque), 10.0);  // the rod's gravity torque, some 30 N m
+  EXPECT_LT(std::abs(torque), 100.0);
+  sim.input("pendulum.gear.ratio_input").set(4.0);
+  const double before = angle.real();
+  sim.step();
+  EXPECT_NEAR(angle.real() - before, 0.25 * sim.timestep(), 1e-4);  // no jump
+  sim.advance(0.2);
+  EXPECT_NEAR(speed.real(), 0.25, 1e-4);
+  EXPECT_EQ(sim.output("pendulum.gear.ratio_output").real(), 4.0);
+}
+
 // drive_train_torque_input (issue 15's case): drive_train_velocity_input with a DriveTrain.TorqueMotor on
 // the shaft. -1000 N m for 1 s through the rigid hinge actuator spins the hinge past -10 rad/s: about
 // -1000 N m s / (1 kg m^2 shaft + 10 kg rod about its end, m L^2 / 3 = 3.3 kg m^2), less gravity's share.
