@@ -200,7 +200,7 @@ class Lowering {
   std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and reference) name
   std::map<int, std::pair<double, double>> effort_ranges_;      // motor or spring -> its effort range enabled
   std::map<int, std::string> friction_couplings_;               // clutch or brake coupling -> its tendon
-  std::map<int, std::string> gear_equalities_;  // gear coupling -> its joint equality
+  std::map<int, std::string> gear_equalities_;                  // gear coupling -> its joint equality
   std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
   std::set<std::string> emitted_geoms_;
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;
