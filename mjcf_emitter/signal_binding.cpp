@@ -140,6 +140,10 @@ std::string_view to_string(Quantity quantity) {
       return "tendon_velocity";
     case Quantity::GearRatio:
       return "gear_ratio";
+    case Quantity::EngageDuration:
+      return "engage_duration";
+    case Quantity::DisengageDuration:
+      return "disengage_duration";
     case Quantity::EqualityForce:
       return "equality_force";
     case Quantity::JointLimitForce:

@@ -46,6 +46,8 @@ enum class Quantity {
                        // readable)
   Engaged,  // Tendon (automatic clutch or brake): engaging ramps the fraction to 1 over `low` seconds,
             // disengaging to 0 over `high`; `initial` is whether it starts engaged, initial_vector {capacity}
+  EngageDuration,     // Tendon (automatic clutch or brake): the engagement ramp's duration, s (readable)
+  DisengageDuration,  // Tendon: the disengagement ramp's duration, s (readable)
   GearRatio,  // Equality (a gear's joint equality, joint1 = output, joint2 = input): ratio = 1 / polycoef[1];
               // writing it re-anchors polycoef[0] so the shafts keep their positions (Real, readable)
   // --- outputs

@@ -155,6 +155,13 @@ SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, in
     b.initial_vector = {c.torque_capacity};
     return b;
   }
+  if (c.automatic && stem.ends_with("Duration")) {  // which one: the attribute's name says
+    const bool disengage = b.path.find(".disengagement_duration_") != std::string::npos;
+    b = mapped(std::move(b), disengage ? Quantity::DisengageDuration : Quantity::EngageDuration,
+               MjObject::Tendon, tendon->second);
+    b.initial = disengage ? c.disengagement_duration : c.engagement_duration;
+    return b;
+  }
   return unmapped(std::move(b), "`" + c.path + "`'s " + std::string(stem) + " signal is not mapped yet");
 }
 

@@ -385,8 +385,17 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       stale = true;  // friction rows are built in mj_step1
       return;
     case Quantity::Engaged:
-      engagements.at(id).engaged = values[0] != 0;  // ramped from the next step on
+      engagements.at(id).engaged = values[0] != 0;  // ramped from the next step on (resolve made it)
       return;
+    case Quantity::EngageDuration:
+    case Quantity::DisengageDuration: {
+      if (values[0] < 0) throw SignalError("input `" + s.info.name + "` got a negative duration");
+      auto e = engagements.find(id);
+      if (e == engagements.end())
+        throw SignalError("input `" + s.info.name + "`: its clutch has no engage input");
+      (b.quantity == Quantity::EngageDuration ? e->second.engage_time : e->second.disengage_time) = values[0];
+      return;
+    }
     case Quantity::GearRatio: {
       if (values[0] == 0) throw SignalError("input `" + s.info.name + "` got a zero gear ratio");
       // MuJoCo holds q1 - q1_0 = c0 + c1 (q2 - q2_0): a new c1 with c0 chosen so that it holds now keeps the
@@ -500,6 +509,14 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::GearRatio:
       out[0] = 1.0 / m->eq_data[id * mjNEQDATA + 1];
       return;
+    case Quantity::EngageDuration:
+    case Quantity::DisengageDuration: {
+      auto e = engagements.find(id);
+      if (e == engagements.end())
+        throw SignalError("output `" + s.info.name + "`: its clutch has no engage input");
+      out[0] = b.quantity == Quantity::EngageDuration ? e->second.engage_time : e->second.disengage_time;
+      return;
+    }
     case Quantity::BodyPosition:
       put(vec(d->xpos + 3 * id));
       return;

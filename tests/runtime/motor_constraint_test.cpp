@@ -285,17 +285,23 @@ TEST(DriveTrainFriction, BrakeHoldsWithinItsCapacityAndSlipsBeyond) {
   }
 }
 
-// An automatic clutch between the motor's shaft and the hinge's: engaged, it carries the motor's torque to
-// the hinge (1 rad/s, more than 1 N m through it); disengaged (ramped out over 0.1 s), it carries nothing
-// and the rod swings free of the motor.
-TEST(DriveTrainFriction, ClutchTransmitsWhenEngaged) {
-  const std::string text = edited_drive_train(
+// drive_train_velocity_input with an automatic clutch (100 N m, initially engaged) between the motor's shaft
+// and a 0.1 kg m^2 output shaft that drives the hinge.
+std::string with_automatic_clutch() {
+  return edited_drive_train(
       {{"    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: shaft.output",
         "    output_shaft is DriveTrain.Shaft:\n        inertia.inertia: 0.1\n"
         "    clutch is DriveTrain.AutomaticClutch:\n        torque_capacity: 100\n"
         "        initial_engagement_fraction: 1\n        min_relative_slip_ratio: 0.01\n"
         "        initially_engaged: true\n        connectors: [shaft.output, output_shaft.input]\n"
         "    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: output_shaft.output"}});
+}
+
+// An automatic clutch between the motor's shaft and the hinge's: engaged, it carries the motor's torque to
+// the hinge (1 rad/s, more than 1 N m through it); disengaged (ramped out over 0.1 s), it carries nothing
+// and the rod swings free of the motor.
+TEST(DriveTrainFriction, ClutchTransmitsWhenEngaged) {
+  const std::string text = with_automatic_clutch();
   for (const bool engaged : {true, false}) {
     SCOPED_TRACE(engaged);
     const openplx::testing::ScratchDir dir;
@@ -343,6 +349,21 @@ TEST(DriveTrainGear, RatioAndTorqueSignals) {
   sim.advance(0.2);
   EXPECT_NEAR(speed.real(), 0.25, 1e-4);
   EXPECT_EQ(sim.output("pendulum.gear.ratio_output").real(), 4.0);
+}
+
+// An automatic clutch's disengagement ramps over its duration input: 0.5 s, so halfway after 0.25 s.
+TEST(DriveTrainFriction, AutomaticClutchRampsOverItsDuration) {
+  const openplx::testing::ScratchDir dir;
+  rt::Simulation sim = load(dir, with_automatic_clutch());
+  rt::Output fraction = sim.output("pendulum.clutch.engagement_fraction_output");
+  EXPECT_EQ(fraction.real(), 1.0);
+  sim.input("pendulum.clutch.disengagement_duration_input").set(0.5);
+  EXPECT_EQ(sim.output("pendulum.clutch.disengagement_duration_output").real(), 0.5);
+  sim.input("pendulum.clutch.engage_input").set(false);
+  sim.advance(0.25);
+  EXPECT_NEAR(fraction.real(), 0.5, sim.timestep() / 0.5 + 1e-12);
+  sim.advance(0.3);
+  EXPECT_EQ(fraction.real(), 0.0);
 }
 
 // drive_train_torque_input (issue 15's case): drive_train_velocity_input with a DriveTrain.TorqueMotor on
