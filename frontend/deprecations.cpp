@@ -39,6 +39,8 @@ constexpr std::array kMoves = {
     Move{"Physics.Signals", "Torque3DOutputTrait", "Physics3D.Signals.Torque3DOutputTrait"},
     Move{"Physics.Signals", "Force3DOutput", "Physics3D.Signals.Force3DOutput"},
     Move{"Physics.Signals", "Force3DOutputTrait", "Physics3D.Signals.Force3DOutputTrait"},
+    // 0.17.8's engine, renamed when EmpiricalEngine arrived (same members).
+    Move{"DriveTrain", "CombustionEngine", "DriveTrain.MeanValueEngine"},
 };
 
 constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kMethods = {{

@@ -76,6 +76,7 @@ void Lowering::emit_actuators(Element& root) {
   for (auto& [joint, damping] : dampings) {
     if (damping > 0) joint->set("damping", damping);
   }
+  emit_drive_actuators(actuators);
 }
 
 // A force or torque motor: a <motor> pushing its control (the default effort at first) within its effort

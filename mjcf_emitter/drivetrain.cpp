@@ -9,11 +9,18 @@ using natives::affine_inverse;
 
 void Lowering::emit_drivetrain(Element& root) {
   if (view_.shafts.empty()) return;
-  for (const sn::Shaft& shaft : view_.shafts) {
+  std::vector<double> crank(view_.shafts.size(), 0.0);  // engines' own inertia turns with their shaft
+  for (const sn::DriveCoupling& c : view_.couplings) {
+    if (c.kind == sn::DriveCoupling::Kind::Engine && c.shafts.size() == 1 && c.shafts[0] >= 0)
+      crank[static_cast<size_t>(c.shafts[0])] += std::max(c.crank_inertia, 0.0);
+  }
+  for (size_t k = 0; k < view_.shafts.size(); ++k) {
+    const sn::Shaft& shaft = view_.shafts[k];
     Element& body = world_->add("body");
     body.set("name", name(shaft.path)).set("pos", "0 0 0");
     Element& joint = body.add("joint");
     joint.set("name", name(shaft.path)).set("type", "hinge").set("axis", "0 0 1");
+    if (crank[k] > 0) joint.set("armature", crank[k]);
     const double inertia = std::max(shaft.inertia, 1e-9);
     body.add("inertial")
         .set("pos", "0 0 0")
@@ -21,23 +28,24 @@ void Lowering::emit_drivetrain(Element& root) {
         .set("diaginertia", Eigen::Vector3d::Constant(inertia));
     shaft_joints_.push_back(name(shaft.path));
   }
-  Element* equality = root.child("equality");
+  Element& equality = *root.child("equality");
   Element& tendons = root.add("tendon");
+  using Kind = sn::DriveCoupling::Kind;
   for (const sn::DriveCoupling& c : view_.couplings) {
-    if (c.kind == sn::DriveCoupling::Kind::Clutch || c.kind == sn::DriveCoupling::Kind::Brake) {
+    if (c.kind == Kind::Clutch || c.kind == Kind::Brake) {
       emit_friction_coupling(tendons, c);
       continue;
     }
     const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });
-    const size_t needed = c.kind == sn::DriveCoupling::Kind::Actuator ? 1
-                          : c.kind == sn::DriveCoupling::Kind::Gear   ? 2
-                                                                      : 3;
+    const size_t needed = c.kind == Kind::Actuator || c.kind == Kind::Engine ? 1
+                          : c.kind == Kind::Differential                    ? 3
+                                                                            : 2;
     if (!complete || c.shafts.size() != needed) {
       warn(c.where, "`" + c.path + "` does not connect drivetrain shafts; it was left out");
       continue;
     }
     switch (c.kind) {
-      case sn::DriveCoupling::Kind::Actuator: {
+      case Kind::Actuator: {
         Element* joint = c.mate >= 0 && tree_mates_.count(c.mate)
                              ? joint_for(c.mate, view_.mates[c.mate].type != sn::MateType::Prismatic)
                              : nullptr;
@@ -47,7 +55,7 @@ void Lowering::emit_drivetrain(Element& root) {
                             "actuator was left out");
           continue;
         }
-        equality->add("joint")
+        equality.add("joint")
             .set("name", name(c.path))
             .set("joint1", *joint->get("name"))
             .set("joint2", shaft_joints_[c.shafts[0]])
@@ -55,37 +63,23 @@ void Lowering::emit_drivetrain(Element& root) {
         drive_edges_.push_back({c.shafts[0], -1, 1.0, joint});
         break;
       }
-      case sn::DriveCoupling::Kind::Gear:
-        if (c.ratio == 0) {
-          warn(c.where, "`" + c.path + ".ratio` is 0; the gear was left out");
-          continue;
-        }
-        equality->add("joint")
-            .set("name", name(c.path))
-            .set("joint1", shaft_joints_[c.shafts[1]])
-            .set("joint2", shaft_joints_[c.shafts[0]])
-            .set("polycoef", "0 " + number(1 / c.ratio) + " 0 0 0");
-        gear_equalities_[index_in(view_.couplings, c)] = name(c.path);
-        drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
+      case Kind::Gear:
+        emit_gear(equality, tendons, c);
         break;
-      case sn::DriveCoupling::Kind::Differential: {
-        if (c.locked_up) {
-          warn(c.where, "`" + c.path + ".locked_up` has no mapping; the differential is emitted open");
-        }
-        Element& tendon = tendons.add("fixed");
-        tendon.set("name", name(c.path));
-        const double half = c.ratio / 2;
-        tendon.add("joint").set("joint", shaft_joints_[c.shafts[0]]).set("coef", 1.0);
-        tendon.add("joint").set("joint", shaft_joints_[c.shafts[1]]).set("coef", -half);
-        tendon.add("joint").set("joint", shaft_joints_[c.shafts[2]]).set("coef", -half);
-        equality->add("tendon").set("name", name(c.path)).set("tendon1", name(c.path));
-        // For gain estimates: an axle turns about 1/gear_ratio as fast as the drive.
-        drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
-        drive_edges_.push_back({c.shafts[0], c.shafts[2], 1 / c.ratio, nullptr});
+      case Kind::GearBox:
+        emit_gearbox(equality, c);
         break;
-      }
-      case sn::DriveCoupling::Kind::Clutch:
-      case sn::DriveCoupling::Kind::Brake:
+      case Kind::Differential:
+        emit_differential(equality, tendons, c);
+        break;
+      case Kind::TorqueConverter:
+        emit_torque_converter(equality, tendons, c);
+        break;
+      case Kind::Engine:
+        emit_engine(c);
+        break;
+      case Kind::Clutch:
+      case Kind::Brake:
         break;  // emit_friction_coupling
     }
   }

@@ -43,7 +43,8 @@ Emitted Lowering::run() {
   if (assets_->children().empty()) drop_empty(root, "asset");
   for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
     drop_empty(root, section);
-  out.manifest_json = manifest_json(options_.model_name, out.signals);
+  out.laws = laws_;
+  out.manifest_json = manifest_json(options_.model_name, out.signals, out.laws);
   stiffen_equalities(root);
   soften_equalities(root);
   return out;

@@ -28,6 +28,7 @@ struct EmitOptions {
 struct Emitted {
   Element document{"mujoco"};
   std::vector<SignalBinding> signals;  // every OpenPLX input/output and how MuJoCo reaches it
+  std::vector<RuntimeLaw> laws;        // what the runtime computes each step (engines, torque converters)
   std::string manifest_json;           // the same, as the signal manifest file
 };
 

@@ -15,6 +15,7 @@ void Lowering::emit_initial_state(Element& root) {
   std::vector<double> ctrl(actuator_count_, 0.0);
   for (const auto& [interaction, control] : actuator_ctrl_)
     ctrl[static_cast<size_t>(control.first)] = control.second;
+  for (const auto& [index, control] : drive_ctrl_) ctrl[static_cast<size_t>(index)] = control;
   const bool moving = !initial_velocities_.empty();
   if (!moving && ctrl.empty()) return;
   Element& key = root.add("keyframe").add("key").set("name", name("initial"));  // prefixed: scenes merge

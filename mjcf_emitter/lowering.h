@@ -155,12 +155,22 @@ class Lowering {
   void emit_friction_coupling(Element& tendons, const sn::DriveCoupling& c);
   double drivetrain_inertia(int start);
 
+  // ------------------------------------------------------------------------------ drive_parts.cpp
+  Element& gear_equality(Element& equality, const sn::DriveCoupling& c, double ratio);
+  void emit_gear(Element& equality, Element& tendons, const sn::DriveCoupling& c);
+  void emit_gearbox(Element& equality, const sn::DriveCoupling& c);
+  void emit_differential(Element& equality, Element& tendons, const sn::DriveCoupling& c);
+  void emit_torque_converter(Element& equality, Element& tendons, const sn::DriveCoupling& c);
+  void emit_engine(const sn::DriveCoupling& c);
+  void emit_drive_actuators(Element& actuators);
+
   // ---------------------------------------------------------------------------------- signals.cpp
   void bind_signals(Element& root, std::vector<SignalBinding>& out);
   SignalBinding bind(const sn::Signal& s);
   SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
   SignalBinding bind_enabled(SignalBinding b, int k);
   SignalBinding bind_coupling(SignalBinding b, std::string_view stem, int k);
+  std::optional<SignalBinding> bind_drive_part(SignalBinding b, std::string_view stem, int k);
   SignalBinding bind_mate(SignalBinding b, std::string_view stem, int m);
   SignalBinding bind_body(SignalBinding b, std::string_view stem, int n);
   SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c);
@@ -200,7 +210,19 @@ class Lowering {
   std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and reference) name
   std::map<int, std::pair<double, double>> effort_ranges_;      // motor or spring -> its effort range enabled
   std::map<int, std::string> friction_couplings_;               // clutch or brake coupling -> its tendon
-  std::map<int, std::string> gear_equalities_;                  // gear coupling -> its joint equality
+  std::map<int, std::string> gear_equalities_;                  // gear or gearbox -> its joint equality
+  std::set<int> gearboxes_;                                     // gearbox couplings
+  std::map<int, std::string> tendon_gears_;                     // flexible or viscous gear -> its tendon
+  std::map<int, std::string> differential_locks_;               // differential -> its lock-up equality
+  std::map<int, std::string> converters_;                       // torque converter -> its base name
+  std::map<int, std::string> engines_;                          // engine -> its actuator
+  struct DriveActuator {
+    Element element;
+    double ctrl;  // initial control
+  };
+  std::vector<DriveActuator> drive_actuators_;      // waiting for the <actuator> section
+  std::vector<std::pair<int, double>> drive_ctrl_;  // their actuator indices and initial controls
+  std::vector<RuntimeLaw> laws_;
   std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
   std::set<std::string> emitted_geoms_;
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;

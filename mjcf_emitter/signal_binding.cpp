@@ -63,6 +63,7 @@ SignalKind signal_kind(std::string_view type) {
   for (std::string_view boolean : {"Activate", "Activated", "Engage", "Engaged", "LockUp", "LockedUp"}) {
     if (ends_with(s, boolean)) return {V::Bool, ""};
   }
+  if (ends_with(s, "Torque")) return {V::Real, "N*m"};  // e.g. TorqueConverterPumpTorqueOutput
   return {V::Real, ""};
 }
 
@@ -138,8 +139,12 @@ std::string_view to_string(Quantity quantity) {
       return "engaged";
     case Quantity::TendonVelocity:
       return "tendon_velocity";
+    case Quantity::TendonSpringForce:
+      return "tendon_spring_force";
     case Quantity::GearRatio:
       return "gear_ratio";
+    case Quantity::GearSelect:
+      return "gear_select";
     case Quantity::EngageDuration:
       return "engage_duration";
     case Quantity::DisengageDuration:
@@ -176,7 +181,18 @@ std::string_view to_string(Quantity quantity) {
   return "none";
 }
 
-std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings) {
+namespace {
+
+void append_numbers(std::string& out, const char* key, const std::vector<double>& values) {
+  ((out += ", \"") += key) += "\": [";
+  for (size_t k = 0; k < values.size(); ++k) (out += k ? ", " : "") += number(values[k]);
+  out += ']';
+}
+
+}  // namespace
+
+std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings,
+                          const std::vector<RuntimeLaw>& laws) {
   using frontend::append_quoted;
   // Appended in place: a large model has tens of thousands of signals.
   std::string out;
@@ -205,14 +221,33 @@ std::string manifest_json(std::string_view model_name, const std::vector<SignalB
     append_quoted(out, b.sensor);
     (out += ", \"sign\": ") += number(b.sign);
     (out += ", \"initial\": ") += number(b.initial);
-    out += ", \"initial_vector\": [";
-    for (size_t k = 0; k < b.initial_vector.size(); ++k)
-      (out += k ? ", " : "") += number(b.initial_vector[k]);
-    out += ']';
+    append_numbers(out, "initial_vector", b.initial_vector);
     (out += ", \"low\": ") += number(b.low);
     (out += ", \"high\": ") += number(b.high);
     out += ", \"reason\": ";
     append_quoted(out, b.reason);
+    (out += ", \"runtime\": ") += b.runtime ? "true" : "false";
+    out += '}';
+  }
+  out += "\n  ],\n  \"laws\": [";
+  first = true;
+  for (const RuntimeLaw& law : laws) {
+    out += first ? "\n    {\"kind\": \"" : ",\n    {\"kind\": \"";
+    first = false;
+    out += law.kind == RuntimeLaw::Kind::Engine ? "engine" : "torque_converter";
+    out += "\", \"path\": ";
+    append_quoted(out, law.path);
+    out += ", \"actuators\": [";
+    for (size_t k = 0; k < law.actuators.size(); ++k) {
+      if (k) out += ", ";
+      append_quoted(out, law.actuators[k]);
+    }
+    out += ']';
+    append_numbers(out, "curve_x", law.curve_x);
+    append_numbers(out, "curve_y", law.curve_y);
+    append_numbers(out, "curve2_x", law.curve2_x);
+    append_numbers(out, "curve2_y", law.curve2_y);
+    (out += ", \"parameter\": ") += number(law.parameter);
     out += '}';
   }
   out += "\n  ]\n}\n";

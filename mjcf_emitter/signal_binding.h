@@ -49,7 +49,12 @@ enum class Quantity {
   EngageDuration,     // Tendon (automatic clutch or brake): the engagement ramp's duration, s (readable)
   DisengageDuration,  // Tendon: the disengagement ramp's duration, s (readable)
   GearRatio,  // Equality (a gear's joint equality, joint1 = output, joint2 = input): ratio = 1 / polycoef[1];
-              // writing it re-anchors polycoef[0] so the shafts keep their positions (Real, readable)
+              // writing it re-anchors polycoef[0] so the shafts keep their positions (Real, readable; 0
+              // while the equality is inactive, a gearbox in neutral)
+  GearSelect,  // Equality (a gearbox's): the gear number (Int, readable): n > 0 forward gear n, n < 0 reverse
+               // gear -n, 0 neutral (inactive). `initial_vector` = forward ratios then reverse ratios, `low` =
+               // how many are forward, `high` = 1 when it has a neutral gear, `initial` = the first gear.
+               // Selecting re-anchors like GearRatio, with the reverse ratios negated
   // --- outputs
   JointPosition,    // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
   JointVelocity,    // Joint: d->qvel[jnt_dofadr[id]], times `sign`
@@ -59,6 +64,8 @@ enum class Quantity {
   JointLimitForce,  // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
   EqualityForce,    // Equality: the force of its constraint row (efc type mjCNSTR_EQUALITY) on joint1
   TendonVelocity,   // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
+  TendonSpringForce,  // Tendon (a flexible or viscous gear): its passive force on joint1's side,
+                      // -(stiffness (length - lengthspring) + damping velocity)
   BodyPosition,     // Body: d->xpos (the body frame's origin, world)
   BodyRPY,          // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
   BodyLinearVelocity,      // Body: the body frame origin's world linear velocity
@@ -87,12 +94,34 @@ struct SignalBinding {
   MjObject object = MjObject::None;
   std::vector<std::string> names;  // MuJoCo names of `object` (usually one; a hinge loop closure has two)
   std::string sensor;              // a MuJoCo sensor carrying the same value, "" when none
-  double sign = 1.0;     // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's
+  double sign = 1.0;  // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's (an rpm
+                      // output is a JointVelocity with sign 60 / 2 pi)
   double initial = 0.0;  // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
   std::vector<double> initial_vector;  // Kinematic*Velocity: the velocity before any input (world axes)
   double low = 0.0;                    // InteractionEnabled
   double high = 0.0;                   // InteractionEnabled
   std::string reason;                  // None: why nothing maps
+  bool runtime = false;  // its behaviour needs the runtime: a law it computes each step (RuntimeLaw) or an
+                         // engagement ramp; the MJCF alone carries the closest static behaviour
+};
+
+// A law MJCF cannot state, computed by the runtime before each step and written into actuators.
+struct RuntimeLaw {
+  enum class Kind {
+    // actuators {engine} on the engine's shaft; curve = full-throttle torque (N m) over speed (rev/min);
+    // parameter = idle rev/min. Writes gain = curve(speed), and a bias holding at least the throttle the
+    // idle governor asks for: min(1, (idle - speed) / (0.1 idle)) below idle.
+    Engine,
+    // actuators {pump, turbine} (<motor>s on the two shafts); curve = capacity factor over nu = turbine /
+    // pump speed, curve2 = torque multiplication over nu; parameter = oil_density * diameter^5. Writes
+    // pump = -factor * parameter * w_pump |w_pump|, turbine = -multiplier * pump.
+    TorqueConverter,
+  };
+  Kind kind = Kind::Engine;
+  std::string path;                    // the OpenPLX part
+  std::vector<std::string> actuators;  // MuJoCo actuator names
+  std::vector<double> curve_x, curve_y, curve2_x, curve2_y;
+  double parameter = 0;
 };
 
 // The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").
@@ -109,8 +138,10 @@ std::string_view to_string(MjObject object);
 std::string_view to_string(Quantity quantity);
 
 // The manifest: {"model": ..., "signals": [{"path", "direction", "type", "value", "unit", "enabled",
-// "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector", "low", "high", "reason"}]}
-// with keys in that order, one signal per line, deterministic.
-std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings);
+// "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector", "low", "high", "reason",
+// "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y", "curve2_x", "curve2_y",
+// "parameter"}]} with keys in that order, one signal or law per line, deterministic.
+std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings,
+                          const std::vector<RuntimeLaw>& laws);
 
 }  // namespace openplx::mjcf

@@ -48,6 +48,7 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
     case Source::Connector:
       return bind_connector(std::move(b), stem, s.source);
     case Source::Coupling:
+      if (stem == "RelativeVelocity1D") b.unit = "rad/s";  // drivetrain parts join rotating shafts
       return bind_coupling(std::move(b), stem, s.source);
     case Source::Other:
       break;
@@ -123,9 +124,11 @@ SignalBinding Lowering::bind_enabled(SignalBinding b, int k) {
   return unmapped(std::move(b), "`" + i.path + "` was not emitted");
 }
 
-// A clutch's or brake's signals: its torque (the friction row's force), slip velocity, engagement.
+// A drivetrain part's signals: gears' torques and ratios, clutches' and brakes' torque (the friction row's
+// force), slip velocity and engagement; the rest in bind_drive_part.
 SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, int k) {
   const sn::DriveCoupling& c = view_.couplings[k];
+  if (std::optional<SignalBinding> part = bind_drive_part(b, stem, k)) return std::move(*part);
   if (auto gear = gear_equalities_.find(k); gear != gear_equalities_.end()) {
     if (stem == "Torque1D" && !b.input)  // the torque the equality puts on the output shaft
       return mapped(std::move(b), Quantity::EqualityForce, MjObject::Equality, gear->second);
@@ -139,6 +142,14 @@ SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, in
     return unmapped(std::move(b), "`" + c.path + "` has no MuJoCo element that carries it");
   if (stem == "Torque1D" && !b.input)
     return mapped(std::move(b), Quantity::MotorForce, MjObject::Tendon, tendon->second);
+  if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {  // off: no friction at all
+    b = mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Tendon, tendon->second);
+    b.initial = 1.0;
+    const double band = c.torque_capacity * std::clamp(c.automatic ? (c.initially_engaged ? 1.0 : 0.0)
+                                                                   : c.engagement_fraction, 0.0, 1.0);
+    std::tie(b.low, b.high) = std::pair(-band, band);
+    return b;
+  }
   if (stem == "RelativeVelocity1D" && !b.input)
     return mapped(std::move(b), Quantity::TendonVelocity, MjObject::Tendon, tendon->second);
   if (stem == "Fraction" && (!c.automatic || !b.input)) {  // an automatic one ramps its own
@@ -149,6 +160,7 @@ SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, in
   }
   if (any_of(stem, {"Engage", "Engaged"}) && c.automatic) {
     b = mapped(std::move(b), Quantity::Engaged, MjObject::Tendon, tendon->second);
+    b.runtime = true;  // the ramp
     b.initial = c.initially_engaged ? 1.0 : 0.0;
     b.low = c.engagement_duration;
     b.high = c.disengagement_duration;
@@ -159,6 +171,7 @@ SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, in
     const bool disengage = b.path.find(".disengagement_duration_") != std::string::npos;
     b = mapped(std::move(b), disengage ? Quantity::DisengageDuration : Quantity::EngageDuration,
                MjObject::Tendon, tendon->second);
+    b.runtime = true;
     b.initial = disengage ? c.disengagement_duration : c.engagement_duration;
     return b;
   }

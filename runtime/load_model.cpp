@@ -84,6 +84,7 @@ LoadedModel load_model(const std::string& path, const std::string& model,
   }
   loaded.xml = emitted.document.to_string();
   loaded.signals = std::move(emitted.signals);
+  loaded.laws = std::move(emitted.laws);
   std::string error;
   loaded.model = load_xml(loaded.xml, error);
   if (!loaded.model) throw LoadError(path + ": error: MuJoCo rejected the emitted MJCF: " + error + "\n");

@@ -16,6 +16,7 @@ struct LoadedModel {
   std::string root_name;
   std::string xml;
   std::vector<mjcf::SignalBinding> signals;
+  std::vector<mjcf::RuntimeLaw> laws;
   std::vector<std::string> warnings;  // printed diagnostics, one each
 };
 

@@ -21,7 +21,8 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   state->root = std::move(loaded.root_name);
   state->xml = std::move(loaded.xml);
   state->warnings = std::move(loaded.warnings);
-  state->resolve(std::move(loaded.signals));
+  state->resolve(std::move(loaded.signals), loaded.laws);
+  state->laws.apply(state->m, state->d);
   mj_forward(state->m, state->d);  // outputs describe the initial state; the first step needs only mj_step2
   state->cache_constraint_forces();
   return Simulation(std::move(state));

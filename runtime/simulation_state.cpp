@@ -96,7 +96,9 @@ SimulationState::~SimulationState() {
   if (m) mj_deleteModel(m);
 }
 
-void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
+void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
+                              const std::vector<mjcf::RuntimeLaw>& drive_laws) {
+  laws.resolve(m, drive_laws);
   kinematic_linear.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
   kinematic_angular.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
   for (mjcf::SignalBinding& b : bindings) {
@@ -161,6 +163,14 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings) {
       e.capacity = b.initial_vector[0];
       e.engage_time = b.low;
       e.disengage_time = b.high;
+    }
+    if (b.quantity == Quantity::GearSelect && !s.ids.empty() && s.ids.front() >= 0) {
+      const size_t forward = static_cast<size_t>(std::clamp(b.low, 0.0, double(b.initial_vector.size())));
+      GearBox& g = gearboxes[s.ids.front()];
+      g.forward.assign(b.initial_vector.begin(), b.initial_vector.begin() + static_cast<long>(forward));
+      g.reverse.assign(b.initial_vector.begin() + static_cast<long>(forward), b.initial_vector.end());
+      g.neutral = b.high != 0;
+      g.gear = static_cast<int>(b.initial);
     }
     if (b.quantity == Quantity::MotorForce)
       s.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
@@ -267,6 +277,7 @@ void SimulationState::step() {
     mj_step1(m, d);
     stale = false;
   }
+  laws.apply(m, d);  // actuator forces come from mj_step2's mj_fwdActuation
   mj_step2(m, d);
   cache_constraint_forces();
   if (!post_step_signals.empty()) compute_post_step();
@@ -396,6 +407,9 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       (b.quantity == Quantity::EngageDuration ? e->second.engage_time : e->second.disengage_time) = values[0];
       return;
     }
+    case Quantity::GearSelect:
+      select_gear(s, static_cast<int>(values[0]));
+      return;
     case Quantity::GearRatio: {
       if (values[0] == 0) throw SignalError("input `" + s.info.name + "` got a zero gear ratio");
       // MuJoCo holds q1 - q1_0 = c0 + c1 (q2 - q2_0): a new c1 with c0 chosen so that it holds now keeps the
@@ -432,6 +446,34 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
     default:
       throw SignalError("input `" + s.info.name + "` has no MuJoCo counterpart: " + b.reason);
   }
+}
+
+// A gearbox's gear: neutral switches its equality off; a gear sets the equality's ratio (negated in reverse),
+// re-anchored like a gear's ratio input so that the shafts keep their positions.
+void SimulationState::select_gear(const ResolvedSignal& s, int gear) {
+  const int id = s.ids.front();
+  GearBox& g = gearboxes.at(id);
+  double ratio = 0;
+  if (gear > 0 && gear <= static_cast<int>(g.forward.size())) {
+    ratio = std::abs(g.forward[static_cast<size_t>(gear - 1)]);
+  } else if (gear < 0 && -gear <= static_cast<int>(g.reverse.size())) {
+    ratio = -std::abs(g.reverse[static_cast<size_t>(-gear - 1)]);
+  } else if (gear == 0) {
+    if (!g.neutral && !g.forward.empty()) ratio = std::abs(g.forward.front());
+  } else {
+    throw SignalError("input `" + s.info.name + "`: gear " + std::to_string(gear) + " is not one of its " +
+                      std::to_string(g.forward.size()) + " forward and " + std::to_string(g.reverse.size()) +
+                      " reverse gears");
+  }
+  g.gear = gear;
+  m->eq_active[id] = ratio != 0;
+  if (ratio != 0) {
+    const int a1 = m->jnt_qposadr[m->eq_obj1id[id]], a2 = m->jnt_qposadr[m->eq_obj2id[id]];
+    mjtNum* poly = m->eq_data + id * mjNEQDATA;
+    poly[1] = 1.0 / ratio;
+    poly[0] = (d->qpos[a1] - m->qpos0[a1]) - poly[1] * (d->qpos[a2] - m->qpos0[a2]);
+  }
+  stale = true;  // equality rows are built in mj_step1
 }
 
 // MuJoCo gives mocap bodies (and so everything hanging from them) no velocity of their own: a point of body
@@ -506,8 +548,15 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::EqualityForce:
       out[0] = constraint_forces[static_cast<size_t>(index)];
       return;
-    case Quantity::GearRatio:
-      out[0] = 1.0 / m->eq_data[id * mjNEQDATA + 1];
+    case Quantity::GearRatio:  // a gearbox in neutral has none
+      out[0] = m->eq_active[id] ? 1.0 / m->eq_data[id * mjNEQDATA + 1] : 0.0;
+      return;
+    case Quantity::GearSelect:
+      out[0] = gearboxes.at(id).gear;
+      return;
+    case Quantity::TendonSpringForce:
+      out[0] = -(m->tendon_stiffness[id] * (d->ten_length[id] - m->tendon_lengthspring[id]) +
+                 m->tendon_damping[id] * d->ten_velocity[id]);
       return;
     case Quantity::EngageDuration:
     case Quantity::DisengageDuration: {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mjcf_emitter/signal_binding.h"
+#include "runtime/drive_laws.h"
 #include "openplx/runtime/simulation.h"
 
 namespace openplx::runtime {
@@ -57,6 +58,13 @@ struct SimulationState {
     double fraction = 0, capacity = 0, engage_time = 0, disengage_time = 0;
   };
   std::map<int, Engagement> engagements;   // by tendon id
+  struct GearBox {                         // Quantity::GearSelect
+    std::vector<double> forward, reverse;  // ratios by gear number
+    bool neutral = true;                   // 0 is neutral
+    int gear = 0;
+  };
+  std::map<int, GearBox> gearboxes;  // by equality id
+  DriveLaws laws;
   std::vector<int> post_step_signals;      // requested outputs computed after each step (no sensor)
   std::vector<Eigen::Vector3d> post_step;  // per signal: their values
 
@@ -65,7 +73,8 @@ struct SimulationState {
   SimulationState& operator=(const SimulationState&) = delete;
   ~SimulationState();
 
-  void resolve(std::vector<mjcf::SignalBinding> bindings);
+  void resolve(std::vector<mjcf::SignalBinding> bindings, const std::vector<mjcf::RuntimeLaw>& drive_laws);
+  void select_gear(const ResolvedSignal& s, int gear);
   int find(std::string_view name, bool input) const;  // throws SignalError
   void step();
   void cache_constraint_forces();

@@ -7,6 +7,7 @@
 
 #include "frontend/urdf/package_uri.h"
 #include "snap/attribute_reader.h"
+#include "snap/read_drivetrain.h"
 #include "snap/read_parameters.h"
 
 namespace openplx::snap {
@@ -44,18 +45,20 @@ class SystemBuilder {
     torque_motor1d_ = program.loaded_model("DriveTrain.TorqueMotor");
     clutch_ = program.loaded_model("DriveTrain.ManualClutch");
     brake_ = program.loaded_model("DriveTrain.ManualBrake");
+    gearbox_ = program.loaded_model("DriveTrain.GearBox");
+    converter_ = program.loaded_model("DriveTrain.EmpiricalTorqueConverter");
+    mean_value_engine_ = program.loaded_model("DriveTrain.MeanValueEngine");
+    empirical_engine_ = program.loaded_model("DriveTrain.EmpiricalEngine");
     mimic_ = program.loaded_model("Urdf.Mimic");
     joint_properties_ = program.loaded_model("Urdf.JointProperties");
     package_path_ = program.loaded_model("Urdf.PackagePath");
     collision_filter_ = program.loaded_model("Simulation.DisableCollisionPair");
-    // Drivetrain parts beyond shafts, gears, differentials, hinge/prismatic actuators and rotational velocity
-    // motors are not mapped: each gets its warning instead of vanishing, as do collision-group filters.
+    // Models with no MuJoCo counterpart get a warning instead of vanishing: terrain, tracks, lidars, linear
+    // 1-D bodies and motors, and power sources without a torque law (InfinitePowerSource).
     for (const char* name :
          {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
           "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.LinearBody",
-          "DriveTrain.ViscousGear", "DriveTrain.TorqueLimitedSlipDifferential", "DriveTrain.GearBox",
-          "DriveTrain.EmpiricalTorqueConverter", "Physics1D.Interactions.LinearVelocityMotor",
-          "DriveTrain.PowerSource"}) {
+          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.InfinitePowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
@@ -149,20 +152,20 @@ class SystemBuilder {
       }
       case Role::Kind::Coupling: {
         using Kind = DriveCoupling::Kind;
-        const Kind kind = is(obj, gear_)           ? Kind::Gear
-                          : is(obj, differential_) ? Kind::Differential
-                          : is(obj, clutch_)       ? Kind::Clutch
-                          : is(obj, brake_)        ? Kind::Brake
-                                                   : Kind::Actuator;
-        view_.couplings.push_back({kind,
-                                   id,
-                                   ev_.graph().path(id),
-                                   {},
-                                   -1,
-                                   real(id, kind == Kind::Differential ? "gear_ratio" : "ratio", 1.0),
-                                   kind == Kind::Differential && in_.boolean(id, "locked_up").value_or(false),
-                                   where_of(id)});
-        if (kind == Kind::Clutch || kind == Kind::Brake) read_friction_coupling(id, view_.couplings.back());
+        DriveCoupling c;
+        c.kind = is(obj, gear_)                                            ? Kind::Gear
+                 : is(obj, differential_)                                  ? Kind::Differential
+                 : is(obj, clutch_)                                        ? Kind::Clutch
+                 : is(obj, brake_)                                         ? Kind::Brake
+                 : is(obj, gearbox_)                                       ? Kind::GearBox
+                 : is(obj, converter_)                                     ? Kind::TorqueConverter
+                 : is(obj, mean_value_engine_) || is(obj, empirical_engine_) ? Kind::Engine
+                                                                           : Kind::Actuator;
+        c.object = id;
+        c.path = ev_.graph().path(id);
+        c.where = where_of(id);
+        read_drive_parameters(in_, id, c);
+        view_.couplings.push_back(std::move(c));
         break;
       }
       case Role::Kind::Node:
@@ -266,7 +269,8 @@ class SystemBuilder {
                 : sub(package_path_)     ? K::PackagePath
                 : sub(collision_filter_) ? K::CollisionFilter
                 : sub(shaft_)            ? K::Shaft
-                : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_)
+                : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_) ||
+                        sub(gearbox_) || sub(converter_) || sub(mean_value_engine_) || sub(empirical_engine_)
                     ? K::Coupling
                 : sub(system_) || sub(body_)                      ? K::Node
                 : sub(connector_)                                 ? K::Connector
@@ -417,6 +421,9 @@ class SystemBuilder {
         case DriveCoupling::Kind::Gear:
         case DriveCoupling::Kind::Clutch:
         case DriveCoupling::Kind::Brake:
+        case DriveCoupling::Kind::GearBox:
+        case DriveCoupling::Kind::TorqueConverter:
+        case DriveCoupling::Kind::Engine:
           c.shafts = connectors(c.object);
           break;
         case DriveCoupling::Kind::Differential:
@@ -443,17 +450,6 @@ class SystemBuilder {
       const std::vector<int> on = connectors(i.object);
       i.shaft = on.size() == 1 ? on[0] : -1;
     }
-  }
-
-  // A clutch or brake: its capacity and engagement; automatic ones (with durations) engage by their input.
-  void read_friction_coupling(fe::ObjectId id, DriveCoupling& c) {
-    c.torque_capacity = real(id, "torque_capacity", 0.0);
-    c.engagement_fraction = real(id, "initial_engagement_fraction", 1.0);
-    c.automatic = ev_.graph().at(id).has("engagement_duration");
-    if (!c.automatic) return;
-    c.initially_engaged = in_.boolean(id, "initially_engaged").value_or(false);
-    c.engagement_duration = real(id, "engagement_duration", 0.1);
-    c.disengagement_duration = real(id, "disengagement_duration", 0.1);
   }
 
   // Physics3D.System.kinematically_controlled (deprecated for RigidBody.is_dynamic, still used): the bodies
@@ -500,7 +496,9 @@ class SystemBuilder {
     signal.input = is(obj, input_);
     signal.path = ev_.graph().path(id);
     signal.type = obj.type->qualified;
-    signal_sources_.push_back(object(id, "source"));
+    // The torque converter's own signal models name it `torque_converter`, not `source`.
+    const fe::ObjectId source = object(id, "source");
+    signal_sources_.push_back(source != fe::kNoObject ? source : object(id, "torque_converter"));
     signal.where = where_of(id);
     if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
       signal.enabled = e->bool_value;
@@ -765,6 +763,10 @@ class SystemBuilder {
   fe::ModelInfo* torque_motor1d_ = nullptr;
   fe::ModelInfo* clutch_ = nullptr;
   fe::ModelInfo* brake_ = nullptr;
+  fe::ModelInfo* gearbox_ = nullptr;
+  fe::ModelInfo* converter_ = nullptr;
+  fe::ModelInfo* mean_value_engine_ = nullptr;
+  fe::ModelInfo* empirical_engine_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;
   fe::ModelInfo* differential_ = nullptr;
   fe::ModelInfo* drive_actuator_ = nullptr;

@@ -227,13 +227,18 @@ struct Shaft {
   frontend::SourceRange where;
 };
 
-// How drivetrain shafts are tied to each other and to 3-D mates.
+// A table of (x, y) points, x increasing; read by linear interpolation, flat beyond its ends.
+using Curve = std::vector<std::pair<double, double>>;
+
+// How drivetrain shafts are tied to each other and to 3-D mates, and what drives them.
 struct DriveCoupling {
-  enum class Kind { Actuator, Gear, Differential, Clutch, Brake };
+  enum class Kind { Actuator, Gear, Differential, Clutch, Brake, GearBox, TorqueConverter, Engine };
   Kind kind = Kind::Gear;
   ObjectRef object;
   std::string path;
-  std::vector<int> shafts;  // Actuator: {shaft}; Gear: {input, output}; Differential: {drive, left, right}
+  // Actuator: {shaft}; Gear, GearBox, Clutch, TorqueConverter: {input, output}; Brake: one or two;
+  // Differential: {drive, left, right}; Engine: {shaft}
+  std::vector<int> shafts;
   int mate = -1;            // Actuator: the 3-D mate it drives
   double ratio = 1.0;       // Gear: ratio; Differential: gear_ratio
   bool locked_up = false;   // Differential
@@ -245,6 +250,23 @@ struct DriveCoupling {
   bool automatic = false;
   bool initially_engaged = false;  // automatic
   double engagement_duration = 0.1, disengagement_duration = 0.1;
+  // Gear (FlexibleGear), GearBox: flexibility.stiffness (inf: rigid) and dissipation.damping_constant;
+  // ViscousGear: dissipation.viscosity (inf: rigid).
+  double stiffness = kInf, damping = 0, viscosity = kInf;
+  double breakaway_torque = -1;  // TorqueLimitedSlipDifferential (-1: an open differential)
+  // GearBox: ratios by gear number (forward 1.., reverse -1..); 0 is neutral when it has one.
+  std::vector<double> forward_gears, reverse_gears;
+  int initial_gear = 0;
+  bool has_neutral_gear = true;
+  // Engine: full-throttle torque (N m) over speed (rev/min); idle speed its governor holds; throttle
+  // before any input; crank inertia added to its shaft.
+  Curve torque_curve;
+  double idle_rpm = 0, initial_throttle = 0, crank_inertia = 0;
+  double min_effort = -kInf, max_effort = kInf;
+  // TorqueConverter: over nu = turbine speed / pump speed, the pump's capacity factor and the turbine's
+  // torque multiplication; pump torque = factor * oil_density * diameter^5 * pump speed^2.
+  Curve geometry_factors, torque_multipliers;
+  double oil_density = 0, diameter = 0, lock_up_time = 0;
 };
 
 // A joint that follows another (Urdf.Mimic): follower = multiplier * leader + offset.
