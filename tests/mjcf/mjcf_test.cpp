@@ -537,11 +537,11 @@ TEST_F(Mjcf, UnmappedDriveTrainPartsAreWarned) {
       load("Scene is Physics3D.System:\n"
            "    a is DriveTrain.Shaft\n"
            "    b is DriveTrain.Shaft\n"
-           "    gear is DriveTrain.ViscousGear:\n"
-           "        connectors: [a.output, b.input]\n"))
+           "    source is DriveTrain.InfinitePowerSource:\n"
+           "        connectors: [a.input]\n"))
       << all_diags();
-  emit("viscous");
-  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`gear` is a DriveTrain.ViscousGear");
+  emit("infinite");
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "`source` is a DriveTrain.InfinitePowerSource");
   accept_all_diags();
 }
 

@@ -281,7 +281,7 @@ TEST_F(Signals, ManifestIsDeterministicAndListsEveryBinding) {
                  "\"enabled\": true, \"quantity\": \"ctrl\", \"object\": \"actuator\", \"names\": "
                  "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"initial_vector\": [], "
                  "\"low\": 0, \"high\": 0, "
-                 "\"reason\": \"\"}"),
+                 "\"reason\": \"\", \"runtime\": false}"),
       std::string::npos)
       << first;
 }
