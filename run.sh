@@ -18,6 +18,9 @@ mujoco-testspeed "$out" 5000 | grep -E "Simulation time|Steps per second|Degrees
 echo "== openplx-sim samples/cart_pole.openplx   (the runtime drives it by OpenPLX signal names)"
 build/tools/openplx-sim samples/cart_pole.openplx --time 1 --set push=5 --at 0.5 push=-5 \
   --print cart_position --print cart_speed --print pole_angle
+echo "== openplx-sim samples/drivetrain_machine.openplx   (engine, clutch, gearbox, differential: throttle, then brake)"
+build/tools/openplx-sim samples/drivetrain_machine.openplx --time 6 --set throttle=0.5 --at 4 throttle=0 \
+  --at 4 clutch=false --at 4 brake_left=1 --at 4 brake_right=1 --print position --print velocity --print engine_rpm
 echo "== openplx2mjcf tests/corpus/urdf/bullet3/r2d2.urdf --check   (a URDF robot through urdfdom, checked in MuJoCo)"
 build/tools/openplx2mjcf tests/corpus/urdf/bullet3/r2d2.urdf -o build/samples/r2d2.xml --check
 echo "== openplx-sim samples/urdf_pantilt.openplx   (a URDF robot extended in OpenPLX with motors and outputs)"

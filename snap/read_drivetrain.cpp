@@ -30,6 +30,9 @@ Curve pairs(AttributeReader& in, fe::ObjectId id, std::string_view list, std::st
 void read_friction_coupling(AttributeReader& in, fe::ObjectId id, DriveCoupling& c) {
   c.torque_capacity = in.real(id, "torque_capacity", 0.0);
   c.engagement_fraction = in.real(id, "initial_engagement_fraction", 1.0);
+  // AGX's threshold for locking the plates (README "Clutches and brakes"): MuJoCo's friction rows stick and
+  // slip by the solver alone, so it has nothing to set. Read, so it is not reported as ignored.
+  (void)in.number(id, "min_relative_slip_ratio");
   c.automatic = in.graph().at(id).has("engagement_duration");
   if (!c.automatic) return;
   c.initially_engaged = in.boolean(id, "initially_engaged").value_or(false);

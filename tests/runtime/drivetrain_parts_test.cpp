@@ -197,3 +197,31 @@ TEST(DriveTrainTorqueConverter, FluidLawAtStallAndAtCoupling) {
 }
 
 }  // namespace
+
+namespace {
+
+// samples/drivetrain_machine.openplx: engine, automatic clutch, gearbox, differential, two driven wheels.
+// Throttled it drives forward; braked (clutch out) it stops, the brakes' 1500 N m per wheel being more than
+// the tyres' grip can turn.
+TEST(DriveTrainMachine, DrivesForwardWhenThrottledAndStopsWhenBraked) {
+  rt::Simulation sim = rt::Simulation::load(std::string(OPENPLX_SAMPLES_DIR) + "/drivetrain_machine.openplx");
+  rt::Output position = sim.output("position");
+  rt::Output velocity = sim.output("velocity");
+  rt::Output rpm = sim.output("engine_rpm");
+  sim.input("throttle").set(0.5);
+  sim.advance(4.0);
+  EXPECT_GT(position.vec3().x(), 10.0);
+  EXPECT_GT(velocity.vec3().x(), 5.0);
+  EXPECT_NEAR(position.vec3().y(), 0.0, 1e-6);  // both wheels drive alike: straight ahead
+  EXPECT_GT(rpm.real(), 800);                  // above idle
+  sim.input("throttle").set(0.0);
+  sim.input("clutch").set(false);
+  sim.input("brake_left").set(1.0);
+  sim.input("brake_right").set(1.0);
+  const double braking_from = position.vec3().x();
+  sim.advance(2.0);
+  EXPECT_NEAR(velocity.vec3().x(), 0.0, 1e-2);
+  EXPECT_GT(position.vec3().x(), braking_from);  // it slid on, forward, and stopped
+}
+
+}  // namespace
