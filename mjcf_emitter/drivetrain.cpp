@@ -33,7 +33,7 @@ void Lowering::emit_drivetrain(Element& root) {
   using Kind = sn::DriveCoupling::Kind;
   for (const sn::DriveCoupling& c : view_.couplings) {
     if (c.kind == Kind::Clutch || c.kind == Kind::Brake) {
-      emit_friction_coupling(tendons, c);
+      emit_friction_coupling(equality, tendons, c);
       continue;
     }
     const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });
@@ -85,11 +85,13 @@ void Lowering::emit_drivetrain(Element& root) {
   }
 }
 
-// A clutch or brake: dry friction between its shafts (a brake: against the ground where a connector is on no
-// shaft), as a fixed tendon whose friction loss is the torque it can carry, torque_capacity * engagement
-// (rigid rows, like the motors'). An automatic one starts at 1 or 0 as initially engaged; the runtime ramps
-// it when its engage input switches.
-void Lowering::emit_friction_coupling(Element& tendons, const sn::DriveCoupling& c) {
+// A clutch or brake: dry friction of torque_capacity * engagement as a fixed tendon whose friction loss is
+// that torque (rigid rows, like the motors'). A clutch's tendon is the slip between its two shafts. A brake
+// holds its shaft against the ground; a brake between two shafts sits in the power line: it passes the
+// motion rigidly (a joint equality) and brakes both against the ground (AGX's drive_train_brake: disengaged
+// the motor turns the hinge through it, engaged it holds). An automatic one starts at 1 or 0 as initially
+// engaged; the runtime ramps it when its engage input switches.
+void Lowering::emit_friction_coupling(Element& equality, Element& tendons, const sn::DriveCoupling& c) {
   std::vector<int> shafts;
   for (int s : c.shafts) {
     if (s >= 0) shafts.push_back(s);
@@ -99,6 +101,15 @@ void Lowering::emit_friction_coupling(Element& tendons, const sn::DriveCoupling&
     warn(c.where, "`" + c.path + "` does not connect " +
                       (clutch ? "two drivetrain shafts" : "a drivetrain shaft") + "; it was left out");
     return;
+  }
+  if (!clutch && shafts.size() == 2) {
+    equality.add("joint")
+        .set("name", name(c.path) + "/line")
+        .set("joint1", shaft_joints_[shafts[1]])
+        .set("joint2", shaft_joints_[shafts[0]])
+        .set("polycoef", "0 1 0 0 0");
+    drive_edges_.push_back({shafts[0], shafts[1], 1.0, nullptr});
+    shafts.pop_back();
   }
   const double engagement = c.automatic ? (c.initially_engaged ? 1.0 : 0.0) : c.engagement_fraction;
   Element& tendon = tendons.add("fixed");

@@ -152,7 +152,7 @@ class Lowering {
   // ------------------------------------------------------------------------------- drivetrain.cpp
   void emit_drivetrain(Element& root);
   void emit_shaft_motor(Element& root, const sn::Interaction1D& i);
-  void emit_friction_coupling(Element& tendons, const sn::DriveCoupling& c);
+  void emit_friction_coupling(Element& equality, Element& tendons, const sn::DriveCoupling& c);
   double drivetrain_inertia(int start);
 
   // ------------------------------------------------------------------------------ drive_parts.cpp

@@ -285,6 +285,37 @@ TEST(DriveTrainFriction, BrakeHoldsWithinItsCapacityAndSlipsBeyond) {
   }
 }
 
+// drive_train_brake (issue 15's case): the motor's shaft drives the hinge's shaft through an automatic
+// brake (1000 N m) in the power line; the motor's effort is limited to 200 N m. Disengaged, the brake passes
+// the motor's 1.0 rad/s to the hinge; engaged (ramped in over 0.1 s) it holds the line at 0 against the
+// motor within 0.5 s.
+TEST(DriveTrainFriction, BrakeInThePowerLinePassesWhenDisengagedAndHoldsWhenEngaged) {
+  const std::string text = edited_drive_train(
+      {{"        connectors: [shaft.input]\n",
+        "        connectors: [shaft.input]\n        min_effort: -200\n        max_effort: 200\n"},
+       {"    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: shaft.output",
+        "    line_shaft is DriveTrain.Shaft:\n        inertia.inertia: 0.1\n"
+        "    brake is DriveTrain.AutomaticBrake:\n        torque_capacity: 1000\n"
+        "        initial_engagement_fraction: 1\n        min_relative_slip_ratio: 0.01\n"
+        "        initially_engaged: false\n        connectors: [shaft.output, line_shaft.input]\n"
+        "    hinge_actuator is DriveTrain.HingeActuator:\n        connector_1d: line_shaft.output"}});
+  const openplx::testing::ScratchDir dir;
+  rt::Simulation sim = load(dir, text);
+  sim.input("velocity_motor_input").set(1.0);
+  rt::Output speed = sim.output("pendulum.hinge.angular_velocity_output");
+  sim.advance(0.5);
+  EXPECT_NEAR(speed.real(), 1.0, 1e-4);
+  EXPECT_FALSE(sim.output("pendulum.brake.engaged_output").boolean());
+  sim.input("pendulum.brake.engage_input").set(true);
+  sim.advance(0.5);
+  EXPECT_NEAR(speed.real(), 0.0, 1e-4);
+  EXPECT_TRUE(sim.output("pendulum.brake.engaged_output").boolean());
+  // It carries the motor's full 200 N m and the rod's weight, within its capacity.
+  const double torque = std::abs(sim.output("pendulum.brake.torque_output").real());
+  EXPECT_GT(torque, 200.0 - 31.0);
+  EXPECT_LT(torque, 1000.0);
+}
+
 // drive_train_velocity_input with an automatic clutch (100 N m, initially engaged) between the motor's shaft
 // and a 0.1 kg m^2 output shaft that drives the hinge.
 std::string with_automatic_clutch() {
