@@ -71,8 +71,9 @@ void Lowering::emit_gear(Element& equality, Element& tendons, const sn::DriveCou
   const double k = viscous ? 0.0 : c.stiffness, b = viscous ? c.viscosity : c.damping;
   if (k * h * h > inertia / 4 || b * h > inertia) {
     const bool by_stiffness = k * h * h > inertia / 4;
-    warn(c.where, "`" + c.path + (by_stiffness ? ".flexibility.stiffness` (" + number(k) + " N*m/rad)"
-                                               : "` damping (" + number(b) + " N*m*s/rad)") +
+    warn(c.where, "`" + c.path +
+                      (by_stiffness ? ".flexibility.stiffness` (" + number(k) + " N*m/rad)"
+                                    : "` damping (" + number(b) + " N*m*s/rad)") +
                       " is too stiff for MuJoCo's explicit tendon forces at time step " + number(h) +
                       " s with these shaft inertias; the gear was emitted rigid");
     gear_equality(equality, c, c.ratio);
@@ -88,8 +89,8 @@ void Lowering::emit_gear(Element& equality, Element& tendons, const sn::DriveCou
   drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
 }
 
-// A gearbox is a gear whose ratio its gear input selects (the runtime re-anchors the equality, as for a gear's
-// ratio input); neutral switches the equality off.
+// A gearbox is a gear whose ratio its gear input selects (the runtime re-anchors the equality, as for a
+// gear's ratio input); neutral switches the equality off.
 void Lowering::emit_gearbox(Element& equality, const sn::DriveCoupling& c) {
   bool valid = true;
   std::optional<double> ratio = gearbox_ratio(c, c.initial_gear, &valid);
@@ -146,8 +147,8 @@ void Lowering::emit_differential(Element& equality, Element& tendons, const sn::
   drive_edges_.push_back({c.shafts[0], c.shafts[2], 1 / c.ratio, nullptr});
 }
 
-// Pump and turbine torques are <motor>s the runtime sets each step from the converter's tables; the MJCF alone
-// transmits nothing through the fluid. A tendon gives the slip velocity, an equality the lock-up.
+// Pump and turbine torques are <motor>s the runtime sets each step from the converter's tables; the MJCF
+// alone transmits nothing through the fluid. A tendon gives the slip velocity, an equality the lock-up.
 void Lowering::emit_torque_converter(Element& equality, Element& tendons, const sn::DriveCoupling& c) {
   const std::string& pump = shaft_joints_[c.shafts[0]];
   const std::string& turbine = shaft_joints_[c.shafts[1]];

@@ -23,7 +23,8 @@ std::optional<SignalBinding> Lowering::bind_drive_part(SignalBinding b, std::str
       b.high = c.has_neutral_gear ? 1.0 : 0.0;
       return b;
     }
-    if (stem == "Ratio" && !b.input) return mapped(std::move(b), Quantity::GearRatio, MjObject::Equality, equality);
+    if (stem == "Ratio" && !b.input)
+      return mapped(std::move(b), Quantity::GearRatio, MjObject::Equality, equality);
   }
   if (enable) {
     if (auto gear = gear_equalities_.find(k); gear != gear_equalities_.end())
@@ -38,7 +39,8 @@ std::optional<SignalBinding> Lowering::bind_drive_part(SignalBinding b, std::str
       return b;
     }
     if (stem == "Fraction")
-      return unmapped(std::move(b), "`" + c.path + "` is a flexible or viscous gear, a tendon whose ratio is fixed");
+      return unmapped(std::move(b),
+                      "`" + c.path + "` is a flexible or viscous gear, a tendon whose ratio is fixed");
   }
   if (auto lock = differential_locks_.find(k); lock != differential_locks_.end() && stem == "Bool")
     return mapped(std::move(b), Quantity::EqualityActive, MjObject::Equality, lock->second);
@@ -50,7 +52,8 @@ std::optional<SignalBinding> Lowering::bind_drive_part(SignalBinding b, std::str
       return mapped(std::move(b), Quantity::EqualityActive, MjObject::Equality, base + "/lock_up");
     if (any_of(stem, {"TorqueConverterPumpTorque", "TorqueConverterTurbineTorque"}) && !b.input) {
       const bool pump = stem == "TorqueConverterPumpTorque";
-      b = mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, base + (pump ? "/pump" : "/turbine"));
+      b = mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator,
+                 base + (pump ? "/pump" : "/turbine"));
       b.runtime = true;
       return b;
     }
@@ -72,7 +75,8 @@ std::optional<SignalBinding> Lowering::bind_drive_part(SignalBinding b, std::str
       b.sign = kRpmPerRadPerSecond;
       return b;
     }
-    if (enable) return unmapped(std::move(b), "`" + c.path + "` is an engine, whose actuator cannot be switched off");
+    if (enable)
+      return unmapped(std::move(b), "`" + c.path + "` is an engine, whose actuator cannot be switched off");
   }
   return std::nullopt;
 }

@@ -38,8 +38,8 @@ void Lowering::emit_drivetrain(Element& root) {
     }
     const bool complete = std::none_of(c.shafts.begin(), c.shafts.end(), [](int k) { return k < 0; });
     const size_t needed = c.kind == Kind::Actuator || c.kind == Kind::Engine ? 1
-                          : c.kind == Kind::Differential                    ? 3
-                                                                            : 2;
+                          : c.kind == Kind::Differential                     ? 3
+                                                                             : 2;
     if (!complete || c.shafts.size() != needed) {
       warn(c.where, "`" + c.path + "` does not connect drivetrain shafts; it was left out");
       continue;

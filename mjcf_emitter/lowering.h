@@ -208,14 +208,14 @@ class Lowering {
   std::map<int, MassProperties> body_mass_;
   std::map<int, std::vector<int>> tree_children_;
   std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and reference) name
-  std::map<int, std::pair<double, double>> effort_ranges_;      // motor or spring -> its effort range enabled
-  std::map<int, std::string> friction_couplings_;               // clutch or brake coupling -> its tendon
-  std::map<int, std::string> gear_equalities_;                  // gear or gearbox -> its joint equality
-  std::set<int> gearboxes_;                                     // gearbox couplings
-  std::map<int, std::string> tendon_gears_;                     // flexible or viscous gear -> its tendon
-  std::map<int, std::string> differential_locks_;               // differential -> its lock-up equality
-  std::map<int, std::string> converters_;                       // torque converter -> its base name
-  std::map<int, std::string> engines_;                          // engine -> its actuator
+  std::map<int, std::pair<double, double>> effort_ranges_;  // motor or spring -> its effort range enabled
+  std::map<int, std::string> friction_couplings_;           // clutch or brake coupling -> its tendon
+  std::map<int, std::string> gear_equalities_;              // gear or gearbox -> its joint equality
+  std::set<int> gearboxes_;                                 // gearbox couplings
+  std::map<int, std::string> tendon_gears_;                 // flexible or viscous gear -> its tendon
+  std::map<int, std::string> differential_locks_;           // differential -> its lock-up equality
+  std::map<int, std::string> converters_;                   // torque converter -> its base name
+  std::map<int, std::string> engines_;                      // engine -> its actuator
   struct DriveActuator {
     Element element;
     double ctrl;  // initial control

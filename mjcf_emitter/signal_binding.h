@@ -52,22 +52,22 @@ enum class Quantity {
               // writing it re-anchors polycoef[0] so the shafts keep their positions (Real, readable; 0
               // while the equality is inactive, a gearbox in neutral)
   GearSelect,  // Equality (a gearbox's): the gear number (Int, readable): n > 0 forward gear n, n < 0 reverse
-               // gear -n, 0 neutral (inactive). `initial_vector` = forward ratios then reverse ratios, `low` =
-               // how many are forward, `high` = 1 when it has a neutral gear, `initial` = the first gear.
+               // gear -n, 0 neutral (inactive). `initial_vector` = forward ratios then reverse ratios, `low`
+               // = how many are forward, `high` = 1 when it has a neutral gear, `initial` = the first gear.
                // Selecting re-anchors like GearRatio, with the reverse ratios negated
   // --- outputs
-  JointPosition,    // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
-  JointVelocity,    // Joint: d->qvel[jnt_dofadr[id]], times `sign`
-  ActuatorForce,    // Actuator: d->actuator_force[id] (N or N·m on the joint)
-  MotorForce,       // Tendon (velocity motor): the friction row's force (efc rows of type
-                    // mjCNSTR_FRICTION_TENDON) plus the bias actuator's force, on the motor joint
-  JointLimitForce,  // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
-  EqualityForce,    // Equality: the force of its constraint row (efc type mjCNSTR_EQUALITY) on joint1
-  TendonVelocity,   // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
+  JointPosition,      // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
+  JointVelocity,      // Joint: d->qvel[jnt_dofadr[id]], times `sign`
+  ActuatorForce,      // Actuator: d->actuator_force[id] (N or N·m on the joint)
+  MotorForce,         // Tendon (velocity motor): the friction row's force (efc rows of type
+                      // mjCNSTR_FRICTION_TENDON) plus the bias actuator's force, on the motor joint
+  JointLimitForce,    // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
+  EqualityForce,      // Equality: the force of its constraint row (efc type mjCNSTR_EQUALITY) on joint1
+  TendonVelocity,     // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
   TendonSpringForce,  // Tendon (a flexible or viscous gear): its passive force on joint1's side,
                       // -(stiffness (length - lengthspring) + damping velocity)
-  BodyPosition,     // Body: d->xpos (the body frame's origin, world)
-  BodyRPY,          // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
+  BodyPosition,       // Body: d->xpos (the body frame's origin, world)
+  BodyRPY,            // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
   BodyLinearVelocity,      // Body: the body frame origin's world linear velocity
   BodyAngularVelocity,     // Body: world angular velocity
   BodyLinearAcceleration,  // Body: world linear acceleration of the body frame origin
@@ -94,8 +94,8 @@ struct SignalBinding {
   MjObject object = MjObject::None;
   std::vector<std::string> names;  // MuJoCo names of `object` (usually one; a hinge loop closure has two)
   std::string sensor;              // a MuJoCo sensor carrying the same value, "" when none
-  double sign = 1.0;  // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's (an rpm
-                      // output is a JointVelocity with sign 60 / 2 pi)
+  double sign = 1.0;     // JointPosition/JointVelocity/MateForce/MateTorque: value = sign * MuJoCo's (an rpm
+                         // output is a JointVelocity with sign 60 / 2 pi)
   double initial = 0.0;  // Ctrl: initial control; Constant: the value (Bool: 0 or 1)
   std::vector<double> initial_vector;  // Kinematic*Velocity: the velocity before any input (world axes)
   double low = 0.0;                    // InteractionEnabled

@@ -145,8 +145,9 @@ SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, in
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {  // off: no friction at all
     b = mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Tendon, tendon->second);
     b.initial = 1.0;
-    const double band = c.torque_capacity * std::clamp(c.automatic ? (c.initially_engaged ? 1.0 : 0.0)
-                                                                   : c.engagement_fraction, 0.0, 1.0);
+    const double band =
+        c.torque_capacity *
+        std::clamp(c.automatic ? (c.initially_engaged ? 1.0 : 0.0) : c.engagement_fraction, 0.0, 1.0);
     std::tie(b.low, b.high) = std::pair(-band, band);
     return b;
   }

@@ -23,7 +23,7 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 
 void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws) {
   for (const mjcf::RuntimeLaw& source : laws) {
-    Law law{source.kind, {}, {}, source.curve_x, source.curve_y, source.curve2_x, source.curve2_y,
+    Law law{source.kind,     {}, {}, source.curve_x, source.curve_y, source.curve2_x, source.curve2_y,
             source.parameter};
     for (const std::string& name : source.actuators) {
       const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "mjcf_emitter/signal_binding.h"
-#include "runtime/drive_laws.h"
 #include "openplx/runtime/simulation.h"
+#include "runtime/drive_laws.h"
 
 namespace openplx::runtime {
 

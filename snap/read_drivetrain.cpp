@@ -20,7 +20,8 @@ std::vector<double> reals(AttributeReader& in, fe::ObjectId id, std::string_view
 }
 
 // Pairs (x, y) read from a list of objects, sorted by x.
-Curve pairs(AttributeReader& in, fe::ObjectId id, std::string_view list, std::string_view x, std::string_view y) {
+Curve pairs(AttributeReader& in, fe::ObjectId id, std::string_view list, std::string_view x,
+            std::string_view y) {
   Curve out;
   for (fe::ObjectId item : in.objects(id, list)) out.emplace_back(in.real(item, x), in.real(item, y));
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -67,7 +68,8 @@ Curve mean_value_torque_curve(double max_torque, double max_torque_rpm, double m
                               double max_rpm) {
   const double nt = std::max(max_torque_rpm, 1.0);
   // T = Tmax (1 - k (n - nt)^2); d(T n)/dn = 0 at np gives k = 1 / ((np - nt)(3 np - nt)).
-  const double k = max_power_rpm > nt ? 1.0 / ((max_power_rpm - nt) * (3 * max_power_rpm - nt)) : 1.0 / (nt * nt);
+  const double k =
+      max_power_rpm > nt ? 1.0 / ((max_power_rpm - nt) * (3 * max_power_rpm - nt)) : 1.0 / (nt * nt);
   auto parabola = [&](double n) { return max_torque * std::max(0.0, 1.0 - k * (n - nt) * (n - nt)); };
   const double top = max_rpm > 0 ? max_rpm : nt + 1.0 / std::sqrt(k);
   const double floor = parabola(std::clamp(idle_rpm, 0.0, nt));
@@ -117,9 +119,9 @@ void read_drive_parameters(AttributeReader& in, fe::ObjectId id, DriveCoupling& 
       } else {
         c.idle_rpm = in.real(id, "idle_RPM", 0.0);
         c.crank_inertia = in.real(id, "crank_shaft_inertia", 0.0);
-        c.torque_curve = mean_value_torque_curve(in.real(id, "max_torque"), in.real(id, "max_torque_RPM"),
-                                                 in.real(id, "max_power_RPM"), c.idle_rpm,
-                                                 in.real(id, "max_RPM", 0.0));
+        c.torque_curve =
+            mean_value_torque_curve(in.real(id, "max_torque"), in.real(id, "max_torque_RPM"),
+                                    in.real(id, "max_power_RPM"), c.idle_rpm, in.real(id, "max_RPM", 0.0));
       }
       break;
     case Kind::TorqueConverter:

@@ -153,14 +153,14 @@ class SystemBuilder {
       case Role::Kind::Coupling: {
         using Kind = DriveCoupling::Kind;
         DriveCoupling c;
-        c.kind = is(obj, gear_)                                            ? Kind::Gear
-                 : is(obj, differential_)                                  ? Kind::Differential
-                 : is(obj, clutch_)                                        ? Kind::Clutch
-                 : is(obj, brake_)                                         ? Kind::Brake
-                 : is(obj, gearbox_)                                       ? Kind::GearBox
-                 : is(obj, converter_)                                     ? Kind::TorqueConverter
+        c.kind = is(obj, gear_)                                              ? Kind::Gear
+                 : is(obj, differential_)                                    ? Kind::Differential
+                 : is(obj, clutch_)                                          ? Kind::Clutch
+                 : is(obj, brake_)                                           ? Kind::Brake
+                 : is(obj, gearbox_)                                         ? Kind::GearBox
+                 : is(obj, converter_)                                       ? Kind::TorqueConverter
                  : is(obj, mean_value_engine_) || is(obj, empirical_engine_) ? Kind::Engine
-                                                                           : Kind::Actuator;
+                                                                             : Kind::Actuator;
         c.object = id;
         c.path = ev_.graph().path(id);
         c.where = where_of(id);

@@ -239,9 +239,9 @@ struct DriveCoupling {
   // Actuator: {shaft}; Gear, GearBox, Clutch, TorqueConverter: {input, output}; Brake: one or two;
   // Differential: {drive, left, right}; Engine: {shaft}
   std::vector<int> shafts;
-  int mate = -1;            // Actuator: the 3-D mate it drives
-  double ratio = 1.0;       // Gear: ratio; Differential: gear_ratio
-  bool locked_up = false;   // Differential
+  int mate = -1;           // Actuator: the 3-D mate it drives
+  double ratio = 1.0;      // Gear: ratio; Differential: gear_ratio
+  bool locked_up = false;  // Differential
   frontend::SourceRange where;
   // Clutch, Brake: dry friction of capacity torque_capacity * engagement. Manual ones engage by their
   // fraction; automatic ones ramp between 0 and 1 over their durations when engaged or disengaged.

@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
       sim.step();
     }
     const double x = position.vec3().x(), v = velocity.vec3().x();
-    std::printf("machine stopped at x = %.2f m (mark %.0f) after %.2f s, top speed %.2f m/s in gear %d\n", x, mark,
-                sim.time(), top, selected);
+    std::printf("machine stopped at x = %.2f m (mark %.0f) after %.2f s, top speed %.2f m/s in gear %d\n", x,
+                mark, sim.time(), top, selected);
     return std::abs(x - mark) < 3 && std::abs(v) < 0.01 ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

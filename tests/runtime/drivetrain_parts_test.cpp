@@ -35,13 +35,13 @@ std::string motor(const std::string& name, const std::string& shaft_name, double
 // The input shaft turns at 1 rad/s; the output follows 1 / ratio of the selected gear.
 TEST(DriveTrainGearBox, GearsNeutralAndReverse) {
   const openplx::testing::ScratchDir dir;
-  rt::Simulation sim = load(dir, "Box is Physics3D.System:\n" + shaft("in", 1) + shaft("out", 1) +
-                                     motor("drive", "in", 1) +
-                                     "    box is DriveTrain.GearBox:\n"
-                                     "        connectors: [in.output, out.input]\n"
-                                     "        forward_gears: [4.0, 2.0]\n"
-                                     "        reverse_gears: [-5.0]\n"
-                                     "        initial_gear: 1\n");
+  rt::Simulation sim =
+      load(dir, "Box is Physics3D.System:\n" + shaft("in", 1) + shaft("out", 1) + motor("drive", "in", 1) +
+                    "    box is DriveTrain.GearBox:\n"
+                    "        connectors: [in.output, out.input]\n"
+                    "        forward_gears: [4.0, 2.0]\n"
+                    "        reverse_gears: [-5.0]\n"
+                    "        initial_gear: 1\n");
   rt::Output out = sim.output("out.angular_velocity_output");
   rt::Output ratio = sim.output("box.ratio_output");
   rt::Output gear = sim.output("box.gear_output");
@@ -65,8 +65,8 @@ TEST(DriveTrainGearBox, GearsNeutralAndReverse) {
 }
 
 // Drive shaft held at 2 rad/s, gear ratio 1, unit axle inertias, a braking torque T on the left axle. Holding
-// the axles together takes T / 2 between them: below the breakaway torque B = 50 they stick, above it they slip
-// with the left axle decelerating at T / 2 - B (the right one accelerating as much).
+// the axles together takes T / 2 between them: below the breakaway torque B = 50 they stick, above it they
+// slip with the left axle decelerating at T / 2 - B (the right one accelerating as much).
 std::string limited_slip() {
   return "Axle is Physics3D.System:\n" + shaft("drive", 1) + shaft("left", 1) + shaft("right", 1) +
          motor("engine", "drive", 2) +
@@ -80,14 +80,16 @@ struct AxleSpeeds {
   double left, right;
 };
 
-AxleSpeeds run_axle(const openplx::testing::ScratchDir& dir, double load_torque, bool locked, double seconds) {
+AxleSpeeds run_axle(const openplx::testing::ScratchDir& dir, double load_torque, bool locked,
+                    double seconds) {
   rt::Simulation sim = load(dir, limited_slip());
   sim.input("differential.lock_up_input").set(locked);
   sim.advance(0.1);  // the motor brings the axles to 2 rad/s together
   EXPECT_NEAR(sim.output("left.angular_velocity_output").real(), 2.0, 1e-3);
   sim.input("load.torque_input").set(-load_torque);
   sim.advance(seconds);
-  return {sim.output("left.angular_velocity_output").real(), sim.output("right.angular_velocity_output").real()};
+  return {sim.output("left.angular_velocity_output").real(),
+          sim.output("right.angular_velocity_output").real()};
 }
 
 TEST(DriveTrainDifferential, LimitedSlipSticksBelowBreakawayAndSlipsAbove) {
@@ -107,12 +109,12 @@ TEST(DriveTrainDifferential, LimitedSlipSticksBelowBreakawayAndSlipsAbove) {
 // as 0.5 (1 - exp(-c t / I)).
 TEST(DriveTrainGear, ViscousGearApproachesItsRatioExponentially) {
   const openplx::testing::ScratchDir dir;
-  rt::Simulation sim = load(dir, "Pair is Physics3D.System:\n" + shaft("in", 1) + shaft("out", 1) +
-                                     motor("drive", "in", 1) +
-                                     "    gear is DriveTrain.ViscousGear:\n"
-                                     "        connectors: [in.output, out.input]\n"
-                                     "        ratio: 2\n"
-                                     "        dissipation.viscosity: 2\n");
+  rt::Simulation sim =
+      load(dir, "Pair is Physics3D.System:\n" + shaft("in", 1) + shaft("out", 1) + motor("drive", "in", 1) +
+                    "    gear is DriveTrain.ViscousGear:\n"
+                    "        connectors: [in.output, out.input]\n"
+                    "        ratio: 2\n"
+                    "        dissipation.viscosity: 2\n");
   rt::Output out = sim.output("out.angular_velocity_output");
   rt::Output torque = sim.output("gear.torque_output");
   sim.advance(0.5);
@@ -152,11 +154,11 @@ TEST(DriveTrainEngine, MeanValueTorqueFollowsItsCurveAtTheMeasuredSpeed) {
 TEST(DriveTrainEngine, EmpiricalTorqueInterpolatesItsTable) {
   const openplx::testing::ScratchDir dir;
   // Its documented default table: 100 N m at 0, 800 at 100, 0 at 150 rev/min.
-  rt::Simulation sim = load(dir, "Bench is Physics3D.System:\n" + shaft("crank", 1) +
-                                     motor("dyno", "crank", 125 / kRpm) +
-                                     "    engine is DriveTrain.EmpiricalEngine:\n"
-                                     "        connectors: [crank.input]\n"
-                                     "        initial_throttle: 0.5\n");
+  rt::Simulation sim =
+      load(dir, "Bench is Physics3D.System:\n" + shaft("crank", 1) + motor("dyno", "crank", 125 / kRpm) +
+                    "    engine is DriveTrain.EmpiricalEngine:\n"
+                    "        connectors: [crank.input]\n"
+                    "        initial_throttle: 0.5\n");
   sim.advance(0.05);
   EXPECT_NEAR(sim.output("engine.torque_output").real(), 0.5 * 400, 0.5 * 16 * 125e-5);  // slope 16 N m/rpm
 }
@@ -179,14 +181,15 @@ TEST(DriveTrainEngine, IdleGovernorHoldsIdleWithoutThrottle) {
 TEST(DriveTrainTorqueConverter, FluidLawAtStallAndAtCoupling) {
   const openplx::testing::ScratchDir dir;
   for (const double nu : {0.0, 0.8}) {
-    rt::Simulation sim = load(dir, "Converter is Physics3D.System:\n" + shaft("pump", 1) + shaft("turbine", 1) +
-                                       motor("engine", "pump", 200) + motor("load", "turbine", 200 * nu) +
-                                       "    converter is DriveTrain.EmpiricalTorqueConverter:\n"
-                                       "        connectors: [pump.output, turbine.input]\n"
-                                       "    pump_torque is DriveTrain.Signals.TorqueConverterPumpTorqueOutput:\n"
-                                       "        torque_converter: converter\n"
-                                       "    turbine_torque is DriveTrain.Signals.TorqueConverterTurbineTorqueOutput:\n"
-                                       "        torque_converter: converter\n");
+    rt::Simulation sim =
+        load(dir, "Converter is Physics3D.System:\n" + shaft("pump", 1) + shaft("turbine", 1) +
+                      motor("engine", "pump", 200) + motor("load", "turbine", 200 * nu) +
+                      "    converter is DriveTrain.EmpiricalTorqueConverter:\n"
+                      "        connectors: [pump.output, turbine.input]\n"
+                      "    pump_torque is DriveTrain.Signals.TorqueConverterPumpTorqueOutput:\n"
+                      "        torque_converter: converter\n"
+                      "    turbine_torque is DriveTrain.Signals.TorqueConverterTurbineTorqueOutput:\n"
+                      "        torque_converter: converter\n");
     sim.advance(0.05);
     const double factor = nu == 0 ? 0.0024 : 0.0017, multiplier = nu == 0 ? 2.0 : 1.0;
     const double expected = factor * 850 * std::pow(0.3, 5) * 200 * 200;
@@ -213,7 +216,7 @@ TEST(DriveTrainMachine, DrivesForwardWhenThrottledAndStopsWhenBraked) {
   EXPECT_GT(position.vec3().x(), 10.0);
   EXPECT_GT(velocity.vec3().x(), 5.0);
   EXPECT_NEAR(position.vec3().y(), 0.0, 1e-6);  // both wheels drive alike: straight ahead
-  EXPECT_GT(rpm.real(), 800);                  // above idle
+  EXPECT_GT(rpm.real(), 800);                   // above idle
   sim.input("throttle").set(0.0);
   sim.input("clutch").set(false);
   sim.input("brake_left").set(1.0);
