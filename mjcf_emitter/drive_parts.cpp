@@ -18,24 +18,6 @@ void split_curve(const sn::Curve& curve, std::vector<double>& x, std::vector<dou
   }
 }
 
-// A gearbox's ratio in gear `gear`: forward gears n > 0, reverse gears -n (negated), none in neutral (0 with
-// a neutral gear, or a zero ratio, which the lists may hold as extra neutrals). Without a neutral gear, 0
-// selects the first forward gear (UNCONFIRMED). Out of range: nullopt too, and `valid` false.
-std::optional<double> gearbox_ratio(const sn::DriveCoupling& c, int gear, bool* valid) {
-  if (valid) *valid = true;
-  double ratio = 0;
-  if (gear > 0 && gear <= static_cast<int>(c.forward_gears.size())) {
-    ratio = std::abs(c.forward_gears[static_cast<size_t>(gear - 1)]);
-  } else if (gear < 0 && -gear <= static_cast<int>(c.reverse_gears.size())) {
-    ratio = -std::abs(c.reverse_gears[static_cast<size_t>(-gear - 1)]);
-  } else if (gear == 0) {
-    if (!c.has_neutral_gear && !c.forward_gears.empty()) ratio = std::abs(c.forward_gears.front());
-  } else if (valid) {
-    *valid = false;
-  }
-  return ratio != 0 ? std::optional<double>(ratio) : std::nullopt;
-}
-
 }  // namespace
 
 // A rigid gear: the output shaft (joint1) turns 1 / ratio times the input (joint2).
@@ -92,9 +74,9 @@ void Lowering::emit_gear(Element& equality, Element& tendons, const sn::DriveCou
 // A gearbox is a gear whose ratio its gear input selects (the runtime re-anchors the equality, as for a
 // gear's ratio input); neutral switches the equality off.
 void Lowering::emit_gearbox(Element& equality, const sn::DriveCoupling& c) {
-  bool valid = true;
-  std::optional<double> ratio = gearbox_ratio(c, c.initial_gear, &valid);
-  if (!valid) {
+  const GearSelection initial =
+      gearbox_ratio(c.forward_gears, c.reverse_gears, c.has_neutral_gear, c.initial_gear);
+  if (!initial.valid) {
     warn(c.where, "`" + c.path + ".initial_gear` (" + std::to_string(c.initial_gear) +
                       ") selects no gear of its lists; it starts in neutral");
   }
@@ -106,8 +88,8 @@ void Lowering::emit_gearbox(Element& equality, const sn::DriveCoupling& c) {
   double any = 1.0;  // the equality's ratio while in neutral: any gear's, so that speeds stay plausible
   for (double r : c.forward_gears)
     if (r != 0) any = std::abs(r);
-  Element& e = gear_equality(equality, c, ratio.value_or(any));
-  if (!ratio) e.set("active", "false");
+  Element& e = gear_equality(equality, c, initial.ratio != 0 ? initial.ratio : any);
+  if (initial.ratio == 0) e.set("active", "false");
   gearboxes_.insert(index_in(view_.couplings, c));
 }
 

@@ -1,5 +1,7 @@
 #include "mjcf_emitter/signal_binding.h"
 
+#include <cmath>
+
 #include <array>
 #include <utility>
 
@@ -179,6 +181,21 @@ std::string_view to_string(Quantity quantity) {
       return "constant";
   }
   return "none";
+}
+
+GearSelection gearbox_ratio(const std::vector<double>& forward, const std::vector<double>& reverse,
+                            bool has_neutral, int gear) {
+  GearSelection g;
+  if (gear > 0 && gear <= static_cast<int>(forward.size())) {
+    g.ratio = std::abs(forward[static_cast<size_t>(gear - 1)]);
+  } else if (gear < 0 && -gear <= static_cast<int>(reverse.size())) {
+    g.ratio = -std::abs(reverse[static_cast<size_t>(-gear - 1)]);
+  } else if (gear == 0) {
+    if (!has_neutral && !forward.empty()) g.ratio = std::abs(forward.front());
+  } else {
+    g.valid = false;
+  }
+  return g;
 }
 
 namespace {

@@ -105,6 +105,16 @@ struct SignalBinding {
                          // engagement ramp; the MJCF alone carries the closest static behaviour
 };
 
+// A gearbox's ratio in gear `gear` (Quantity::GearSelect): forward gears n > 0, reverse gears -n (negated),
+// 0 for neutral (gear 0 with a neutral gear, or a zero ratio, which the lists may hold as extra neutrals).
+// Without a neutral gear, 0 selects the first forward gear (UNCONFIRMED). `valid` is false out of range.
+struct GearSelection {
+  double ratio = 0;
+  bool valid = true;
+};
+GearSelection gearbox_ratio(const std::vector<double>& forward, const std::vector<double>& reverse,
+                            bool has_neutral, int gear);
+
 // A law MJCF cannot state, computed by the runtime before each step and written into actuators.
 struct RuntimeLaw {
   enum class Kind {

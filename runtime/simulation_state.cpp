@@ -412,12 +412,7 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       return;
     case Quantity::GearRatio: {
       if (values[0] == 0) throw SignalError("input `" + s.info.name + "` got a zero gear ratio");
-      // MuJoCo holds q1 - q1_0 = c0 + c1 (q2 - q2_0): a new c1 with c0 chosen so that it holds now keeps the
-      // shafts where they are; from here on their speeds keep the new ratio.
-      const int a1 = m->jnt_qposadr[m->eq_obj1id[id]], a2 = m->jnt_qposadr[m->eq_obj2id[id]];
-      mjtNum* poly = m->eq_data + id * mjNEQDATA;
-      poly[1] = 1.0 / values[0];
-      poly[0] = (d->qpos[a1] - m->qpos0[a1]) - poly[1] * (d->qpos[a2] - m->qpos0[a2]);
+      reanchor_gear(id, values[0]);
       stale = true;  // equality rows are built in mj_step1
       return;
     }
@@ -453,27 +448,25 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
 void SimulationState::select_gear(const ResolvedSignal& s, int gear) {
   const int id = s.ids.front();
   GearBox& g = gearboxes.at(id);
-  double ratio = 0;
-  if (gear > 0 && gear <= static_cast<int>(g.forward.size())) {
-    ratio = std::abs(g.forward[static_cast<size_t>(gear - 1)]);
-  } else if (gear < 0 && -gear <= static_cast<int>(g.reverse.size())) {
-    ratio = -std::abs(g.reverse[static_cast<size_t>(-gear - 1)]);
-  } else if (gear == 0) {
-    if (!g.neutral && !g.forward.empty()) ratio = std::abs(g.forward.front());
-  } else {
+  const mjcf::GearSelection selection = mjcf::gearbox_ratio(g.forward, g.reverse, g.neutral, gear);
+  if (!selection.valid) {
     throw SignalError("input `" + s.info.name + "`: gear " + std::to_string(gear) + " is not one of its " +
                       std::to_string(g.forward.size()) + " forward and " + std::to_string(g.reverse.size()) +
                       " reverse gears");
   }
   g.gear = gear;
-  m->eq_active[id] = ratio != 0;
-  if (ratio != 0) {
-    const int a1 = m->jnt_qposadr[m->eq_obj1id[id]], a2 = m->jnt_qposadr[m->eq_obj2id[id]];
-    mjtNum* poly = m->eq_data + id * mjNEQDATA;
-    poly[1] = 1.0 / ratio;
-    poly[0] = (d->qpos[a1] - m->qpos0[a1]) - poly[1] * (d->qpos[a2] - m->qpos0[a2]);
-  }
+  m->eq_active[id] = selection.ratio != 0;
+  if (selection.ratio != 0) reanchor_gear(id, selection.ratio);
   stale = true;  // equality rows are built in mj_step1
+}
+
+// MuJoCo holds q1 - q1_0 = c0 + c1 (q2 - q2_0): a new c1 with c0 chosen so that it holds now keeps the shafts
+// where they are; from here on their speeds keep the new ratio.
+void SimulationState::reanchor_gear(int id, double ratio) {
+  const int a1 = m->jnt_qposadr[m->eq_obj1id[id]], a2 = m->jnt_qposadr[m->eq_obj2id[id]];
+  mjtNum* poly = m->eq_data + id * mjNEQDATA;
+  poly[1] = 1.0 / ratio;
+  poly[0] = (d->qpos[a1] - m->qpos0[a1]) - poly[1] * (d->qpos[a2] - m->qpos0[a2]);
 }
 
 // MuJoCo gives mocap bodies (and so everything hanging from them) no velocity of their own: a point of body

@@ -75,6 +75,7 @@ struct SimulationState {
 
   void resolve(std::vector<mjcf::SignalBinding> bindings, const std::vector<mjcf::RuntimeLaw>& drive_laws);
   void select_gear(const ResolvedSignal& s, int gear);
+  void reanchor_gear(int equality, double ratio);
   int find(std::string_view name, bool input) const;  // throws SignalError
   void step();
   void cache_constraint_forces();
