@@ -444,10 +444,17 @@ class SystemBuilder {
     for (JointProperties& p : view_.joint_properties) p.mate = mate_index(object(p.object, "mate"));
     for (Interaction1D& i : view_.interactions) {
       const fe::Object& obj = ev_.graph().at(i.object);
-      if (!is(obj, motor1d_) && !is(obj, torque_motor1d_)) continue;
-      i.kind =
-          is(obj, motor1d_) ? Interaction1D::Kind::RotationalVelocityMotor : Interaction1D::Kind::TorqueMotor;
+      const bool drivetrain_motor = is(obj, motor1d_) || is(obj, torque_motor1d_);
+      // A Physics3D rotational motor given a shaft's 1-D connector drives that shaft too.
+      const bool rotational_motor = i.kind == Interaction1D::Kind::RotationalVelocityMotor ||
+                                    i.kind == Interaction1D::Kind::TorqueMotor;
+      if (!drivetrain_motor && !rotational_motor) continue;
       const std::vector<int> on = connectors(i.object);
+      if (!drivetrain_motor && (on.size() != 1 || on[0] < 0)) continue;
+      if (drivetrain_motor) {
+        i.kind = is(obj, motor1d_) ? Interaction1D::Kind::RotationalVelocityMotor
+                                   : Interaction1D::Kind::TorqueMotor;
+      }
       i.shaft = on.size() == 1 ? on[0] : -1;
     }
   }

@@ -203,6 +203,17 @@ TEST(DriveTrainTorqueConverter, FluidLawAtStallAndAtCoupling) {
 
 namespace {
 
+// A Physics3D torque motor given a shaft's connector drives the shaft: 10 N m on 2 kg m^2 for 1 s is 5 rad/s.
+TEST(DriveTrainMotor, Physics3DTorqueMotorOnAShaft) {
+  const openplx::testing::ScratchDir dir;
+  rt::Simulation sim = load(dir, "Spin is Physics3D.System:\n" + shaft("s", 2) +
+                                     "    motor is Physics3D.Interactions.TorqueMotor:\n"
+                                     "        connectors: [s.input]\n");
+  sim.input("motor.torque_input").set(10.0);
+  sim.advance(1.0);
+  EXPECT_NEAR(sim.output("s.angular_velocity_output").real(), 5.0, 1e-9);
+}
+
 // samples/drivetrain_machine.openplx: engine, automatic clutch, gearbox, differential, two driven wheels.
 // Throttled it drives forward; braked (clutch out) it stops, the brakes' 1500 N m per wheel being more than
 // the tyres' grip can turn.
