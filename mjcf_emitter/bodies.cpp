@@ -8,6 +8,32 @@ namespace openplx::mjcf {
 using natives::affine_compose;
 using natives::affine_inverse;
 
+std::string Lowering::geom_class(const char* kind) const {
+  return options_.prefix + kind;
+}
+
+// Whether the body (or, for geometries of the world and of systems, the world) holds a visual geometry.
+bool Lowering::has_visuals(int owner) {
+  if (visual_owners_.empty()) {
+    visual_owners_.insert(-2);  // computed
+    for (const sn::Geometry& g : view_.geometries)
+      if (g.visual) visual_owners_.insert(is_body(g.owner) ? g.owner : sn::kWorld);
+  }
+  return visual_owners_.count(is_body(owner) ? owner : sn::kWorld) > 0;
+}
+
+// The geom classes: visual geoms shown and without contacts, collision geoms hidden (group 3).
+void Lowering::emit_geom_classes(Element& root) {
+  Element& defaults = root.add("default");
+  defaults.add("default")
+      .set("class", geom_class("visual"))
+      .add("geom")
+      .set("group", 2)
+      .set("contype", 0)
+      .set("conaffinity", 0);
+  defaults.add("default").set("class", geom_class("collision")).add("geom").set("group", 3);
+}
+
 void Lowering::emit_world_geoms(Element& world) {
   for (const sn::Geometry& g : view_.geometries) {
     if (is_body(g.owner)) continue;
@@ -112,8 +138,8 @@ void Lowering::emit_inertial(Element& body, int node) {
     meshes = meshes || !unit_density_properties(*g);
   }
   if (meshes) {
-    // MuJoCo computes mesh volumes exactly (exactmeshinertia); the mass goes on the geoms. For motor gains
-    // below, estimate the body as a sphere of radius 0.1 m.
+    // The mass goes on the geoms; the draft compile (finish_with_draft) turns it into an explicit inertial
+    // with exact mesh volumes. For motor gains below, estimate the body as a sphere of radius 0.1 m.
     mass_on_geoms_[node] = n.body.mass;
     const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
     body_mass_[node] = {mass, Eigen::Vector3d::Zero(), 0.4 * mass * 0.01 * Eigen::Matrix3d::Identity()};
@@ -204,8 +230,16 @@ void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Trans
   if (g.visual) {
     if (g.visual_material >= 0) geom.set("material", name(view_.visual_materials[g.visual_material].path));
   }
-  if (!g.collides) geom.set("contype", 0).set("conaffinity", 0);
-  if (g.visual || !g.in_mass) geom.set("group", 3);  // outside inertiagrouprange: no mass
+  // MuJoCo's viewers show groups 0-2: visual geoms in 2, collision geoms in 3 where their body has visual
+  // ones to show instead (mujoco_menagerie's convention), else in 0.
+  if (g.visual) {
+    geom.set("class", geom_class("visual"));
+  } else {
+    geom.set("class", geom_class("collision"));
+    if (!has_visuals(g.owner)) geom.set("group", 0);
+    if (!g.collides) geom.set("contype", 0).set("conaffinity", 0);
+  }
+  if (!g.in_mass && mass_on_geoms_.count(g.owner)) geom.set("mass", 0.0);  // the draft sums every geom
   if (auto it = mass_on_geoms_.find(g.owner); it != mass_on_geoms_.end() && g.in_mass && it->second > 0) {
     geom.set("mass", it->second);
     it->second = 0;  // the whole given mass on the first geometry that counts

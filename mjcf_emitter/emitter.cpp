@@ -14,8 +14,7 @@ Emitted Lowering::run() {
       .set("angle", "radian")
       .set("autolimits", "true")
       .set("inertiafromgeom", "auto")
-      .set("inertiagrouprange", "0 2")
-      .set("exactmeshinertia", "true")
+      .set("inertiagrouprange", "0 5")
       .set("balanceinertia", "false")
       .set("fusestatic", "false")
       .set("discardvisual", "false");
@@ -26,6 +25,7 @@ Emitted Lowering::run() {
                       "were left out");
   }
   choose_tree();
+  emit_geom_classes(root);
   assets_ = &root.add("asset");
   emit_visual_materials();
   Element& world = root.add("worldbody");
@@ -46,7 +46,7 @@ Emitted Lowering::run() {
   out.laws = laws_;
   out.manifest_json = manifest_json(options_.model_name, out.signals, out.laws);
   stiffen_equalities(root);
-  soften_equalities(root);
+  finish_with_draft(root);
   return out;
 }
 

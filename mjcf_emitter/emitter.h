@@ -23,6 +23,10 @@ struct EmitOptions {
   std::string prefix;       // prepended to every MuJoCo name (--prefix)
   std::string output_dir;   // mesh files are written relative to it; empty: absolute paths
   double timestep = 0.002;  // <option timestep> (--timestep): OpenPLX has no time-step setting
+  // The MuJoCo the numbers are for (--mujoco): the file loads in both, but soft welds' solref and
+  // torquescale follow laws that changed in 3.0 (README "MuJoCo versions").
+  enum class MuJoCo { V2, V3 };
+  MuJoCo mujoco = MuJoCo::V2;
 };
 
 struct Emitted {

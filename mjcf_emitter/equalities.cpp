@@ -132,7 +132,7 @@ std::optional<MateCompliance> Lowering::compliance(const sn::Mate& mate) {
 // constant 2 h (the shortest MuJoCo's solver keeps stable), critical damping, impedance 0.9999 (the largest
 // it accepts). An error then decays within about two steps, and a constant load leaves a residual of order
 // (1 - d) of the unconstrained motion per step (README "Couplings"). Flexible ones are set by
-// soften_equalities.
+// finish_with_draft.
 void Lowering::stiffen_equalities(Element& root) {
   Element* equality = root.child("equality");
   if (!equality) return;
@@ -152,15 +152,23 @@ std::string Lowering::rigid_solimp() {
   return number(kRigidImpedance) + " " + number(kRigidImpedance) + " 0.001 0.5 2";
 }
 
-// Flexible loop closures need MuJoCo's own inverse-inertia estimate (dA): loaded once, then written.
-void Lowering::soften_equalities(Element& root) {
-  if (soft_equalities_.empty() || sink_.has_errors()) return;
-  const SoftEqualityResult r =
-      apply_soft_equalities(root, soft_equalities_, options_.output_dir, options_.timestep);
-  if (!r.error.empty()) {
-    warn({}, "flexible loop closures kept MuJoCo's default softness: the draft model did not load (" +
-                 r.error + ")");
+// What only MuJoCo's compiler knows, from one draft compile: mesh bodies' mass properties (written as
+// explicit inertials, so the file needs no exactmeshinertia, which 3.2.5 removed) and, for flexible loop
+// closures, bodies' inverse-inertia estimates (dA).
+void Lowering::finish_with_draft(Element& root) {
+  std::vector<Element*> mesh_bodies;
+  for (const auto& [node, mass] : mass_on_geoms_) mesh_bodies.push_back(body_element_.at(node));
+  if ((soft_equalities_.empty() && mesh_bodies.empty()) || sink_.has_errors()) return;
+  const DraftModel draft(root, options_.output_dir);
+  if (!draft.model()) {
+    warn({}, "the draft model did not load in MuJoCo (" + draft.error() +
+                 "); mesh bodies keep MuJoCo's own mass computation and flexible loop closures its default "
+                 "softness");
+    return;
   }
+  draft.write_inertials(mesh_bodies);
+  const SoftEqualityResult r = apply_soft_equalities(draft.model(), soft_equalities_, options_.timestep,
+                                                     options_.mujoco == EmitOptions::MuJoCo::V3);
   for (const std::string& e : r.unstable) {
     warn({}, "equality " + e + " is stiffer than explicit integration at " + number(options_.timestep) +
                  " s resolves (h sqrt(k/m) > 1); it may oscillate");

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "mjcf_emitter/draft_model.h"
 #include "mjcf_emitter/emitter.h"
 #include "mjcf_emitter/mass_properties.h"
 #include "mjcf_emitter/soft_constraints.h"
@@ -92,6 +93,9 @@ class Lowering {
   void choose_tree();
 
   // ----------------------------------------------------------------------------------- bodies.cpp
+  std::string geom_class(const char* kind) const;
+  bool has_visuals(int owner);
+  void emit_geom_classes(Element& root);
   void emit_world_geoms(Element& world);
   void emit_bodies(Element& world);
   Element& emit_body(Element& parent, int node);
@@ -111,7 +115,7 @@ class Lowering {
   // ------------------------------------------------------------------------------- equalities.cpp
   void emit_loop_closures(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
-  void soften_equalities(Element& root);
+  void finish_with_draft(Element& root);
   void stiffen_equalities(Element& root);
   std::string rigid_solref() const;
   static std::string rigid_solimp();
@@ -225,6 +229,7 @@ class Lowering {
   std::vector<RuntimeLaw> laws_;
   std::map<int, const sn::JointProperties*> joint_properties_;  // mate -> its URDF joint properties
   std::set<std::string> emitted_geoms_;
+  std::set<int> visual_owners_;  // bodies (and kWorld) with visual geometries; -2 once computed
   std::unordered_map<int, std::vector<const sn::Geometry*>> geometries_by_owner_;
   std::map<int, std::pair<int, double>> actuator_ctrl_;  // motor interaction -> actuator index, initial ctrl
   size_t actuator_count_ = 0;

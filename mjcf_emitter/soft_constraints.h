@@ -6,6 +6,8 @@
 // rotational stiffness is torquescale ks / (4 (1-d) dA): torquescale = 4 k_rot / k_trans.
 #pragma once
 
+#include <mujoco/mujoco.h>
+
 #include <string>
 #include <vector>
 
@@ -33,12 +35,12 @@ inline constexpr double kSoftImpedance = 0.05;
 
 struct SoftEqualityResult {
   std::vector<std::string> unstable;  // equalities whose stiffness needs h sqrt(ks) > 1 (warn)
-  std::string error;                  // MuJoCo could not load the draft (then nothing was changed)
 };
 
-// Loads `document` once with mj_loadXML (written into `dir`, so relative mesh paths resolve) to read
-// body_invweight0, then writes solref/solimp (and torquescale) on every pending equality.
-SoftEqualityResult apply_soft_equalities(Element& document, const std::vector<PendingSoftEquality>& pending,
-                                         const std::string& dir, double timestep);
+// Writes solref/solimp (and torquescale) on every pending equality from the draft's body_invweight0, by the
+// law of the target MuJoCo (spec/mujoco3-notes.md 4.2.4-4.2.5): 3.x takes dA = 1/m for "simple" bodies and
+// applies torquescale squared against the rotational dA, where 2.2.2 used the translational dA for all rows.
+SoftEqualityResult apply_soft_equalities(const mjModel* draft, const std::vector<PendingSoftEquality>& pending,
+                                         double timestep, bool mujoco3);
 
 }  // namespace openplx::mjcf

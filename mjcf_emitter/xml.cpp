@@ -1,5 +1,7 @@
 #include "mjcf_emitter/xml.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 
@@ -53,6 +55,13 @@ Element& Element::set(std::string_view key, std::string value) {
     }
   }
   attributes_.emplace_back(std::string(key), std::move(value));
+  return *this;
+}
+
+Element& Element::erase(std::string_view key) {
+  attributes_.erase(std::remove_if(attributes_.begin(), attributes_.end(),
+                                   [&](const auto& attribute) { return attribute.first == key; }),
+                    attributes_.end());
   return *this;
 }
 

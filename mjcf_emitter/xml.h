@@ -28,6 +28,7 @@ class Element {
 
   const std::string& name() const { return name_; }
   const std::string* get(std::string_view key) const;
+  Element& erase(std::string_view key);  // removes the attribute if present
   // Children are held by pointer, so an element's address never changes: emitters keep pointers to joints
   // and bodies while adding more elements.
   const std::vector<std::unique_ptr<Element>>& children() const { return children_; }

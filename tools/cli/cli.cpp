@@ -124,6 +124,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.model_name = evaluation.evaluator->root_name();
   emit_options.prefix = options.prefix;
   emit_options.timestep = options.timestep;
+  emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
@@ -145,7 +146,7 @@ std::string manifest_path(const std::string& output) {
 
 std::string usage() {
   return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--prefix P] "
-         "[--timestep S] [--dump=tokens|ast|values|snap]\n"
+         "[--timestep S] [--mujoco 2.2|3] [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
          "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the "
@@ -159,6 +160,8 @@ std::string usage() {
          "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose\n"
          "  --prefix P     prepend P to every MuJoCo name\n"
          "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
+         "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
+         "                 numbers (the file loads in both either way)\n"
          "  --dump=KIND    tokens | ast | values | snap (world frames after assembly)\n"
          "  --help         show this text\n"
          "  --version      show the version\n"
@@ -212,6 +215,18 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
       options.timestep = std::strtod(value.c_str(), &end);
       if (value.empty() || *end != '\0' || !(options.timestep > 0) || !std::isfinite(options.timestep)) {
         error = "--timestep takes a positive number of seconds, not '" + value + "'";
+        return std::nullopt;
+      }
+      continue;
+    }
+    if (!take_value(args, i, "--mujoco", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      if (value == "2" || value == "2.2" || value == "2.2.2") {
+        options.mujoco3 = false;
+      } else if (value == "3" || value.starts_with("3.")) {
+        options.mujoco3 = true;
+      } else {
+        error = "--mujoco takes 2.2 or 3 (the MuJoCo whose soft-constraint laws to use), not '" + value + "'";
         return std::nullopt;
       }
       continue;

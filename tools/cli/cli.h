@@ -24,6 +24,7 @@ struct CliOptions {
   bool check = false;       // --check: load the MJCF in MuJoCo and compare with SNAP
   std::string prefix;       // --prefix P: prepended to every MuJoCo name
   double timestep = 0.002;  // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
+  bool mujoco3 = false;     // --mujoco 3: soft-weld laws of MuJoCo 3.x
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;

@@ -1,0 +1,52 @@
+#include "mjcf_emitter/draft_model.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+
+namespace openplx::mjcf {
+
+namespace fs = std::filesystem;
+
+DraftModel::DraftModel(const Element& document, const std::string& dir) {
+  const fs::path folder = dir.empty() ? fs::temp_directory_path() : fs::path(dir);
+  // The pid keeps processes apart, the counter threads and calls of one process.
+  static std::atomic<unsigned> counter{0};
+  const fs::path file = folder / (".openplx2mjcf-draft-" + std::to_string(::getpid()) + "-" +
+                                  std::to_string(counter++) + ".xml");
+  std::string text = document.to_string();
+  // 2.2.2 takes mesh volumes from the meshes only with this flag (otherwise from an equivalent box).
+  if (const size_t at = text.find("<compiler "); at != std::string::npos)
+    text.insert(at + 10, "exactmeshinertia=\"true\" ");
+  std::ofstream(file) << text;
+  char error[1000] = "";
+  m_ = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+  std::error_code ec;
+  fs::remove(file, ec);
+  if (!m_) error_ = error;
+}
+
+DraftModel::~DraftModel() {
+  if (m_) mj_deleteModel(m_);
+}
+
+void DraftModel::write_inertials(const std::vector<Element*>& bodies) const {
+  if (!m_) return;
+  for (Element* body : bodies) {
+    const std::string* name = body->get("name");
+    const int id = name ? mj_name2id(m_, mjOBJ_BODY, name->c_str()) : -1;
+    if (id <= 0) continue;
+    const mjtNum* pos = m_->body_ipos + 3 * id;
+    const mjtNum* quat = m_->body_iquat + 4 * id;
+    const mjtNum* inertia = m_->body_inertia + 3 * id;
+    body->add("inertial")
+        .set("pos", Eigen::Vector3d(pos[0], pos[1], pos[2]))
+        .set("quat", number(quat[0]) + " " + number(quat[1]) + " " + number(quat[2]) + " " + number(quat[3]))
+        .set("mass", m_->body_mass[id])
+        .set("diaginertia", Eigen::Vector3d(inertia[0], inertia[1], inertia[2]));
+  }
+}
+
+}  // namespace openplx::mjcf

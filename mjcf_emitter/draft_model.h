@@ -1,0 +1,36 @@
+// The emitted document compiled once by MuJoCo 2.2.2 for numbers only MuJoCo's compiler knows: the mass
+// properties of bodies whose mass comes from meshes (computed with exact mesh volumes), and bodies' inverse
+// inertia estimates (body_invweight0) for soft equalities. The draft alone sets `exactmeshinertia`; the
+// output carries explicit inertials instead, so it needs no flag that MuJoCo 3.2.5 removed.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <string>
+#include <vector>
+
+#include "mjcf_emitter/xml.h"
+
+namespace openplx::mjcf {
+
+class DraftModel {
+ public:
+  // Writes `document` into `dir` (so relative mesh paths resolve; empty: the temp folder) and loads it.
+  DraftModel(const Element& document, const std::string& dir);
+  ~DraftModel();
+  DraftModel(const DraftModel&) = delete;
+  DraftModel& operator=(const DraftModel&) = delete;
+
+  const mjModel* model() const { return m_; }
+  const std::string& error() const { return error_; }  // why it did not load
+
+  // Writes <inertial pos quat mass diaginertia> with the draft's mass properties into each body element
+  // (found by its name attribute).
+  void write_inertials(const std::vector<Element*>& bodies) const;
+
+ private:
+  mjModel* m_ = nullptr;
+  std::string error_;
+};
+
+}  // namespace openplx::mjcf
