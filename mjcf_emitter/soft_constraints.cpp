@@ -6,9 +6,9 @@ namespace openplx::mjcf {
 
 namespace {
 
-// MuJoCo 3's body_simple (2): a leaf body of the world (or of a fixed child of the world) whose inertial frame
-// is its body frame and whose joints are all slides at its origin along a body axis. 3.x gives such a body
-// dA = 1/m where 2.2.2 averages over three axes.
+// MuJoCo 3's body_simple (2): a leaf body of the world (or of a fixed child of the world) whose inertial
+// frame is its body frame and whose joints are all slides at its origin along a body axis. 3.x gives such a
+// body dA = 1/m where 2.2.2 averages over three axes.
 bool simple_in_mujoco3(const mjModel* m, int b) {
   const int parent = m->body_parentid[b];
   const bool under_world = parent == 0 || (m->body_parentid[parent] == 0 && m->body_dofnum[parent] == 0);

@@ -4,14 +4,18 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "mjcf_emitter/check.h"
 #include "snap/resolve_system.h"
 #include "tests/support/mjcf_fixture.h"
+#include "tests/support/scratch_dir.h"
+#include "tools/cli/cli.h"
 
 namespace {
 
@@ -45,6 +49,55 @@ TEST_F(Mjcf, EveryCorpusModelLoadsInMuJoCoWhereSnapPutIt) {
   }
   EXPECT_EQ(models, 16u);
   accept_all_diags();  // mjcf-unmapped warnings are checked one by one below
+}
+
+// MuJoCo's viewers show geom groups 0-2 by default. In every corpus model and URDF robot each body with
+// geometry shows some of it, and no hidden geom is a visual one (visual geoms never collide): visual geoms
+// are in group 2, collision geoms in 3 where their body has visual ones, else in 0. Each model goes through
+// the command line, as a user runs it.
+TEST(MjcfGroups, EveryCorpusModelShowsItsGeometryInMuJoCosViewers) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(fs::path(OPENPLX_CORPUS_DIR) / "agxunity"))
+    if (entry.path().extension() == ".openplx") files.push_back(entry.path());
+  for (const auto& entry : fs::recursive_directory_iterator(fs::path(OPENPLX_VENDORED_CORPUS_DIR) / "urdf"))
+    if (entry.path().extension() == ".urdf") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  const openplx::testing::ScratchDir dir;
+  size_t models = 0, visual = 0, hidden = 0;
+  for (const fs::path& file : files) {
+    const std::string name = file.stem().string();
+    const std::string out = (dir / (name + std::to_string(models) + ".xml")).string();
+    std::vector<std::string> args{file.string(), "-o", out};
+    if (name == "simple_lidar") args.insert(args.end(), {"--model", "ValidLidar"});
+    if (name == "use_test_bundle")
+      args.insert(args.end(), {"-B", (file.parent_path() / "TestBundle").string()});
+    std::ostringstream text, errors;
+    if (openplx::cli::run(args, text, errors) != 0) continue;  // errors by design: other tests check them
+    SCOPED_TRACE(file.string());
+    char error[1000] = "";
+    mjModel* m = mj_loadXML(out.c_str(), nullptr, error, sizeof(error));
+    ASSERT_NE(m, nullptr) << error;
+    std::vector<int> shown(static_cast<size_t>(m->nbody), 0), geoms(static_cast<size_t>(m->nbody), 0);
+    for (int g = 0; g < m->ngeom; ++g) {
+      const size_t b = static_cast<size_t>(m->geom_bodyid[g]);
+      ++geoms[b];
+      shown[b] += m->geom_group[g] <= 2;
+      const bool collides = m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0;
+      if (m->geom_group[g] > 2) {
+        EXPECT_TRUE(collides) << "hidden geom " << g << " does not collide: a visual one";
+        ++hidden;
+      }
+      visual += m->geom_group[g] == 2;
+    }
+    for (int b = 1; b < m->nbody; ++b)
+      EXPECT_TRUE(geoms[b] == 0 || shown[b] > 0)
+          << "body " << mj_id2name(m, mjOBJ_BODY, b) << " shows nothing";
+    mj_deleteModel(m);
+    ++models;
+  }
+  EXPECT_GE(models, 31u);  // 17 AgX models and 14 URDFs load; the rest are errors by design
+  EXPECT_GT(visual, 0u);   // the robots' visuals
+  EXPECT_GT(hidden, 0u);   // the robots' collision geoms
 }
 
 TEST_F(Mjcf, UnsupportedModelsGetOneWarningEach) {
