@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runtime/mujoco_compat.h"
 #include "runtime/name_suggestions.h"
 #include "runtime/rotation.h"
 
@@ -417,7 +418,7 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       return;
     }
     case Quantity::EqualityActive:
-      for (int e : s.ids) m->eq_active[e] = values[0] != 0;
+      for (int e : s.ids) equality_active(m, d, e) = values[0] != 0;
       stale = true;  // constraint rows are built in mj_step1
       return;
     case Quantity::KinematicLinearVelocity:
@@ -455,7 +456,7 @@ void SimulationState::select_gear(const ResolvedSignal& s, int gear) {
                       " reverse gears");
   }
   g.gear = gear;
-  m->eq_active[id] = selection.ratio != 0;
+  equality_active(m, d, id) = selection.ratio != 0;
   if (selection.ratio != 0) reanchor_gear(id, selection.ratio);
   stale = true;  // equality rows are built in mj_step1
 }
@@ -525,7 +526,7 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       out[0] = d->ten_velocity[id];
       return;
     case Quantity::EqualityActive:
-      out[0] = m->eq_active[id] ? 1 : 0;
+      out[0] = equality_active(m, d, id) ? 1 : 0;
       return;
     case Quantity::JointPosition:
       out[0] = b.sign * d->qpos[s.address];
@@ -542,13 +543,13 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       out[0] = constraint_forces[static_cast<size_t>(index)];
       return;
     case Quantity::GearRatio:  // a gearbox in neutral has none
-      out[0] = m->eq_active[id] ? 1.0 / m->eq_data[id * mjNEQDATA + 1] : 0.0;
+      out[0] = equality_active(m, d, id) ? 1.0 / m->eq_data[id * mjNEQDATA + 1] : 0.0;
       return;
     case Quantity::GearSelect:
       out[0] = gearboxes.at(id).gear;
       return;
     case Quantity::TendonSpringForce:
-      out[0] = -(m->tendon_stiffness[id] * (d->ten_length[id] - m->tendon_lengthspring[id]) +
+      out[0] = -(m->tendon_stiffness[id] * (d->ten_length[id] - tendon_rest_length(m, d, id)) +
                  m->tendon_damping[id] * d->ten_velocity[id]);
       return;
     case Quantity::EngageDuration:
