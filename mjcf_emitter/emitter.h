@@ -27,6 +27,10 @@ struct EmitOptions {
   // torquescale follow laws that changed in 3.0 (README "MuJoCo versions").
   enum class MuJoCo { V2, V3 };
   MuJoCo mujoco = MuJoCo::V2;
+  // The "initial" keyframe (initial controls and free bodies' velocities). A keyframe must cover the whole
+  // model, so a file <include>d into a bigger scene goes without (--no-keyframe); a SignalBridge sets the
+  // initial controls instead.
+  bool keyframe = true;
 };
 
 struct Emitted {

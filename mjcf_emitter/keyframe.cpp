@@ -17,7 +17,7 @@ void Lowering::emit_initial_state(Element& root) {
     ctrl[static_cast<size_t>(control.first)] = control.second;
   for (const auto& [index, control] : drive_ctrl_) ctrl[static_cast<size_t>(index)] = control;
   const bool moving = !initial_velocities_.empty();
-  if (!moving && ctrl.empty()) return;
+  if ((!moving && ctrl.empty()) || !options_.keyframe) return;
   Element& key = root.add("keyframe").add("key").set("name", name("initial"));  // prefixed: scenes merge
   if (moving) key.set("qvel", joined(initial_qvel()));
   if (!ctrl.empty()) key.set("ctrl", joined(ctrl));

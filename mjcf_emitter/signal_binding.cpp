@@ -200,22 +200,30 @@ GearSelection gearbox_ratio(const std::vector<double>& forward, const std::vecto
 
 namespace {
 
+std::string json_number(double value) {
+  if (std::isnan(value)) return "\"nan\"";
+  if (std::isinf(value)) return value > 0 ? "\"inf\"" : "\"-inf\"";
+  return number(value);
+}
+
 void append_numbers(std::string& out, const char* key, const std::vector<double>& values) {
   ((out += ", \"") += key) += "\": [";
-  for (size_t k = 0; k < values.size(); ++k) (out += k ? ", " : "") += number(values[k]);
+  for (size_t k = 0; k < values.size(); ++k) (out += k ? ", " : "") += json_number(values[k]);
   out += ']';
 }
 
 }  // namespace
 
-std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings,
-                          const std::vector<RuntimeLaw>& laws) {
+std::string manifest_json(std::string_view model_name, std::string_view prefix,
+                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws) {
   using frontend::append_quoted;
   // Appended in place: a large model has tens of thousands of signals.
   std::string out;
   out.reserve(64 + 320 * bindings.size());  // about what one binding takes: few reallocations
   out += "{\n  \"model\": ";
   append_quoted(out, model_name);
+  out += ",\n  \"prefix\": ";
+  append_quoted(out, prefix);
   out += ",\n  \"signals\": [";
   bool first = true;
   for (const SignalBinding& b : bindings) {
@@ -236,11 +244,11 @@ std::string manifest_json(std::string_view model_name, const std::vector<SignalB
     }
     out += "], \"sensor\": ";
     append_quoted(out, b.sensor);
-    (out += ", \"sign\": ") += number(b.sign);
-    (out += ", \"initial\": ") += number(b.initial);
+    (out += ", \"sign\": ") += json_number(b.sign);
+    (out += ", \"initial\": ") += json_number(b.initial);
     append_numbers(out, "initial_vector", b.initial_vector);
-    (out += ", \"low\": ") += number(b.low);
-    (out += ", \"high\": ") += number(b.high);
+    (out += ", \"low\": ") += json_number(b.low);
+    (out += ", \"high\": ") += json_number(b.high);
     out += ", \"reason\": ";
     append_quoted(out, b.reason);
     (out += ", \"runtime\": ") += b.runtime ? "true" : "false";
@@ -264,7 +272,7 @@ std::string manifest_json(std::string_view model_name, const std::vector<SignalB
     append_numbers(out, "curve_y", law.curve_y);
     append_numbers(out, "curve2_x", law.curve2_x);
     append_numbers(out, "curve2_y", law.curve2_y);
-    (out += ", \"parameter\": ") += number(law.parameter);
+    (out += ", \"parameter\": ") += json_number(law.parameter);
     out += '}';
   }
   out += "\n  ]\n}\n";

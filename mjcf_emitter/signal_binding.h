@@ -147,11 +147,12 @@ std::string_view to_string(SignalValue value);
 std::string_view to_string(MjObject object);
 std::string_view to_string(Quantity quantity);
 
-// The manifest: {"model": ..., "signals": [{"path", "direction", "type", "value", "unit", "enabled",
-// "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector", "low", "high", "reason",
-// "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y", "curve2_x", "curve2_y",
-// "parameter"}]} with keys in that order, one signal or law per line, deterministic.
-std::string manifest_json(std::string_view model_name, const std::vector<SignalBinding>& bindings,
-                          const std::vector<RuntimeLaw>& laws);
+// The manifest: {"model": ..., "prefix": ..., "signals": [{"path", "direction", "type", "value", "unit",
+// "enabled", "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector", "low", "high",
+// "reason", "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y", "curve2_x", "curve2_y",
+// "parameter"}]} with keys in that order, one signal or law per line, deterministic. Numbers JSON cannot hold
+// are the strings "inf", "-inf", "nan". `prefix` is the one every MuJoCo name carries.
+std::string manifest_json(std::string_view model_name, std::string_view prefix,
+                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws);
 
 }  // namespace openplx::mjcf

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "openplx/runtime/signal_bridge.h"
 #include "runtime/load_model.h"
 #include "runtime/simulation_state.h"
 
@@ -28,20 +29,17 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   return Simulation(std::move(state));
 }
 
-Simulation::Simulation(std::unique_ptr<SimulationState> state) : state_(std::move(state)) {}
+Simulation::Simulation(std::unique_ptr<SimulationState> state)
+    : bridge_(new SignalBridge(std::move(state))), state_(bridge_->state_.get()) {}
 Simulation::Simulation(Simulation&&) noexcept = default;
 Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
 Input Simulation::input(std::string_view name) {
-  const int index = state_->find(name, true);
-  return Input(state_.get(), index, state_->signals[static_cast<size_t>(index)].direct);
+  return bridge_->input(name);
 }
 Output Simulation::output(std::string_view name) {
-  const int index = state_->find(name, false);
-  state_->request_output(index);
-  const ResolvedSignal& s = state_->signals[static_cast<size_t>(index)];
-  return Output(state_.get(), index, s.direct, s.scale, s.direct3);
+  return bridge_->output(name);
 }
 
 void Simulation::step() {
@@ -76,60 +74,10 @@ const std::vector<std::string>& Simulation::warnings() const {
 }
 
 std::vector<SignalInfo> Simulation::inputs() const {
-  std::vector<SignalInfo> out;
-  for (const ResolvedSignal& s : state_->signals) {
-    if (s.binding.input) out.push_back(s.info);
-  }
-  return out;
+  return bridge_->inputs();
 }
-
 std::vector<SignalInfo> Simulation::outputs() const {
-  std::vector<SignalInfo> out;
-  for (const ResolvedSignal& s : state_->signals) {
-    if (!s.binding.input) out.push_back(s.info);
-  }
-  return out;
-}
-
-void Input::set_checked(double value) {
-  state_->write(index_, &value, 1, ValueType::Real);
-}
-void Input::set(bool value) {
-  const double v = value ? 1.0 : 0.0;
-  state_->write(index_, &v, 1, ValueType::Bool);
-}
-void Input::set(const Eigen::Vector2d& value) {
-  state_->write(index_, value.data(), 2, ValueType::Vec2);
-}
-void Input::set(const Eigen::Vector3d& value) {
-  state_->write(index_, value.data(), 3, ValueType::Vec3);
-}
-const SignalInfo& Input::info() const {
-  return state_->signals[static_cast<size_t>(index_)].info;
-}
-
-double Output::real_checked() const {
-  double v = 0;
-  state_->read(index_, &v, 1, ValueType::Real);
-  return v;
-}
-bool Output::boolean() const {
-  double v = 0;
-  state_->read(index_, &v, 1, ValueType::Bool);
-  return v != 0;
-}
-Eigen::Vector2d Output::vec2() const {
-  Eigen::Vector2d v;
-  state_->read(index_, v.data(), 2, ValueType::Vec2);
-  return v;
-}
-Eigen::Vector3d Output::vec3_checked() const {
-  Eigen::Vector3d v;
-  state_->read(index_, v.data(), 3, ValueType::Vec3);
-  return v;
-}
-const SignalInfo& Output::info() const {
-  return state_->signals[static_cast<size_t>(index_)].info;
+  return bridge_->outputs();
 }
 
 }  // namespace openplx::runtime

@@ -93,6 +93,7 @@ Eigen::Vector3d linear_velocity(const mjModel* m, const mjData* d, int b, const 
 }  // namespace
 
 SimulationState::~SimulationState() {
+  if (!owns) return;
   if (d) mj_deleteData(d);
   if (m) mj_deleteModel(m);
 }
@@ -278,26 +279,33 @@ void SimulationState::step() {
     mj_step1(m, d);
     stale = false;
   }
-  laws.apply(m, d);  // actuator forces come from mj_step2's mj_fwdActuation
+  before_step();
   mj_step2(m, d);
+  after_step();
+  mj_step1(m, d);
+}
+
+void SimulationState::before_step() {
+  laws.apply(m, d);  // actuator forces come from mj_step2's mj_fwdActuation
+}
+
+void SimulationState::after_step() {
   cache_constraint_forces();
   if (!post_step_signals.empty()) compute_post_step();
   ramp_engagements();
-  if (kinematic) {
-    const mjtNum h = m->opt.timestep;
-    for (int k = 0; k < m->nmocap; ++k) {
-      const Eigen::Vector3d& v = kinematic_linear[static_cast<size_t>(k)];
-      const Eigen::Vector3d& w = kinematic_angular[static_cast<size_t>(k)];
-      for (int i = 0; i < 3; ++i) d->mocap_pos[3 * k + i] += h * v[i];
-      if (!w.isZero()) {
-        mjtNum local[3], world[3] = {w.x(), w.y(), w.z()}, r[9];
-        mju_quat2Mat(r, d->mocap_quat + 4 * k);
-        mju_mulMatTVec(local, r, world, 3, 3);  // mju_quatIntegrate turns about body axes
-        mju_quatIntegrate(d->mocap_quat + 4 * k, local, h);
-      }
+  if (!kinematic) return;
+  const mjtNum h = m->opt.timestep;
+  for (int k = 0; k < m->nmocap; ++k) {
+    const Eigen::Vector3d& v = kinematic_linear[static_cast<size_t>(k)];
+    const Eigen::Vector3d& w = kinematic_angular[static_cast<size_t>(k)];
+    for (int i = 0; i < 3; ++i) d->mocap_pos[3 * k + i] += h * v[i];
+    if (!w.isZero()) {
+      mjtNum local[3], world[3] = {w.x(), w.y(), w.z()}, r[9];
+      mju_quat2Mat(r, d->mocap_quat + 4 * k);
+      mju_mulMatTVec(local, r, world, 3, 3);  // mju_quatIntegrate turns about body axes
+      mju_quatIntegrate(d->mocap_quat + 4 * k, local, h);
     }
   }
-  mj_step1(m, d);
 }
 
 // Automatic clutches and brakes move their engagement toward engaged (1) or not (0) at the rate their

@@ -41,6 +41,7 @@ struct EffortSwitch {
 struct SimulationState {
   mjModel* m = nullptr;
   mjData* d = nullptr;
+  bool owns = true;  // deletes m and d (a Simulation's); a bridge on someone's model does not
   std::string root;
   std::string xml;
   std::vector<std::string> warnings;
@@ -77,7 +78,9 @@ struct SimulationState {
   void select_gear(const ResolvedSignal& s, int gear);
   void reanchor_gear(int equality, double ratio);
   int find(std::string_view name, bool input) const;  // throws SignalError
-  void step();
+  void step();                                        // mj_step2 and the next mj_step1, with the hooks below
+  void before_step();                                 // laws into actuators
+  void after_step();  // cached constraint forces, post-step outputs, engagement ramps, kinematic bodies
   void cache_constraint_forces();
   void ramp_engagements();
   void init_switches();

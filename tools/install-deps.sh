@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(cmake make g++ pkg-config clang-format
   libmujoco-dev libqhull-dev libmujoco-samples libeigen3-dev liburdfdom-dev libtinyxml2-dev
-  libgtest-dev libbenchmark-dev)
+  libgtest-dev libbenchmark-dev nlohmann-json3-dev)
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang libclang-rt-14-dev)
 fi

@@ -124,6 +124,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.model_name = evaluation.evaluator->root_name();
   emit_options.prefix = options.prefix;
   emit_options.timestep = options.timestep;
+  emit_options.keyframe = options.keyframe;
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
@@ -146,7 +147,7 @@ std::string manifest_path(const std::string& output) {
 
 std::string usage() {
   return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--prefix P] "
-         "[--timestep S] [--mujoco 2.2|3] [--dump=tokens|ast|values|snap]\n"
+         "[--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
          "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the "
@@ -162,6 +163,9 @@ std::string usage() {
          "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
          "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
          "                 numbers (the file loads in both either way)\n"
+         "  --no-keyframe  no \"initial\" keyframe, for files <include>d into a bigger scene (a keyframe "
+         "must\n"
+         "                 cover the whole scene; a SignalBridge sets the initial controls)\n"
          "  --dump=KIND    tokens | ast | values | snap (world frames after assembly)\n"
          "  --help         show this text\n"
          "  --version      show the version\n"
@@ -198,6 +202,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (arg == "--strict") {
       options.strict = true;
+      continue;
+    }
+    if (arg == "--no-keyframe") {
+      options.keyframe = false;
       continue;
     }
     if (arg == "--check") {

@@ -25,6 +25,7 @@ struct CliOptions {
   std::string prefix;       // --prefix P: prepended to every MuJoCo name
   double timestep = 0.002;  // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
   bool mujoco3 = false;     // --mujoco 3: soft-weld laws of MuJoCo 3.x
+  bool keyframe = true;     // --no-keyframe: leave the initial keyframe out
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;

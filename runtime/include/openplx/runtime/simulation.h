@@ -57,6 +57,7 @@ struct SignalInfo {
 };
 
 struct SimulationState;
+class SignalBridge;
 
 // Handles to one signal. Scalar joint and actuator signals take an inlined fast path (a pointer into
 // mjData resolved at load), so a controller pays a few nanoseconds per signal per step.
@@ -75,7 +76,7 @@ class Input {
   const SignalInfo& info() const;
 
  private:
-  friend class Simulation;
+  friend class SignalBridge;
   Input(SimulationState* state, int index, double* direct) : state_(state), index_(index), direct_(direct) {}
   void set_checked(double value);
   SimulationState* state_;
@@ -94,7 +95,7 @@ class Output {
   const SignalInfo& info() const;
 
  private:
-  friend class Simulation;
+  friend class SignalBridge;
   Output(SimulationState* state, int index, const double* direct, double scale, const double* direct3)
       : state_(state), index_(index), direct_(direct), scale_(scale), direct3_(direct3) {}
   double real_checked() const;
@@ -106,6 +107,7 @@ class Output {
   const double* direct3_;  // a Vec3 output that is three consecutive mjData numbers, else null
 };
 
+// A model loaded from OpenPLX, with its own mjModel and mjData and one SignalBridge on them.
 class Simulation {
  public:
   static Simulation load(const std::string& path, const LoadOptions& options = {});  // throws LoadError
@@ -135,7 +137,8 @@ class Simulation {
 
  private:
   explicit Simulation(std::unique_ptr<SimulationState> state);
-  std::unique_ptr<SimulationState> state_;
+  std::unique_ptr<SignalBridge> bridge_;
+  SimulationState* state_;  // the bridge's
 };
 
 // Adds a folder searched for the standard bundles when the library is not run from its build or install
