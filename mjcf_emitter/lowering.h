@@ -171,6 +171,7 @@ class Lowering {
   // ---------------------------------------------------------------------------------- signals.cpp
   void bind_signals(Element& root, std::vector<SignalBinding>& out);
   SignalBinding bind(const sn::Signal& s);
+  SignalBinding bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts);
   SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
   SignalBinding bind_enabled(SignalBinding b, int k);
   SignalBinding bind_coupling(SignalBinding b, std::string_view stem, int k);

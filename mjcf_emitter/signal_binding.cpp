@@ -81,6 +81,8 @@ std::string_view to_string(SignalValue value) {
       return "vec2";
     case SignalValue::Vec3:
       return "vec3";
+    case SignalValue::Vector:
+      return "vector";
   }
   return "real";
 }
@@ -177,6 +179,8 @@ std::string_view to_string(Quantity quantity) {
       return "mate_force";
     case Quantity::MateTorque:
       return "mate_torque";
+    case Quantity::Composite:
+      return "composite";
     case Quantity::Constant:
       return "constant";
   }

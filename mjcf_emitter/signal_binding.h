@@ -12,7 +12,7 @@
 
 namespace openplx::mjcf {
 
-enum class SignalValue { Real, Bool, Int, Vec2, Vec3 };
+enum class SignalValue { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a composite's values
 
 // The MuJoCo element type a binding's names refer to (an mjtObj).
 enum class MjObject { None, Actuator, Joint, Body, Site, Equality, Tendon };
@@ -80,6 +80,9 @@ enum class Quantity {
                // child subtree (the `force` sensor, site axes); `sign` is -1 when the child holds
                // connectors[0]
   MateTorque,  // the same, torque about the connector origin
+  Composite,   // Robotics RobotInput/RobotOutput: `names` are the OpenPLX paths of its parts, in order; an
+               // input takes one value per part (each a scalar input), an output gives its parts' values
+               // one after another (Vector)
   Constant,    // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
 };
 

@@ -8,15 +8,52 @@ namespace openplx::mjcf {
 // has one. Outputs without a sensor (controls, ranges, constants) are computed by the runtime.
 void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   sensors_ = &root.add("sensor");
-  for (const sn::Signal& s : view_.signals) {
-    SignalBinding b = bind(s);
-    if (!b.input && b.enabled && b.quantity == Quantity::None) {
-      warn(s.where, "output `" + s.path + "` (" + s.type + ") has no MuJoCo counterpart: " + b.reason +
-                        "; it was left out");
-    }
-    if (!b.input && b.enabled) add_sensor(b);
-    out.push_back(std::move(b));
+  for (const sn::Signal& s : view_.signals) out.push_back(s.composite ? SignalBinding{} : bind(s));
+  // Composites after their parts.
+  for (size_t k = 0; k < view_.signals.size(); ++k) {
+    if (view_.signals[k].composite) out[k] = bind_composite(view_.signals[k], out);
   }
+  for (size_t k = 0; k < view_.signals.size(); ++k) {
+    const sn::Signal& s = view_.signals[k];
+    SignalBinding& b = out[k];
+    if ((!b.input || s.composite) && b.enabled && b.quantity == Quantity::None) {
+      warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + s.type +
+                        ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
+    }
+    if (!b.input && b.enabled && b.quantity != Quantity::Composite) add_sensor(b);
+  }
+}
+
+// A RobotInput or RobotOutput: its parts' paths in order. An input's parts must be scalar inputs (one value
+// each); an output's parts any outputs. Sensors (members unpublished) are not composed.
+SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts) {
+  SignalBinding b;
+  b.path = s.path;
+  b.input = s.input;
+  b.type = s.type;
+  b.enabled = s.enabled;
+  b.value = SignalValue::Vector;
+  if (s.sensors > 0) {
+    warn(s.where, "`" + s.path +
+                      ".sensors` has no mapping (Robotics sensors' members are unpublished); the " +
+                      "output composes its joint and object sources only");
+  }
+  for (int p : s.parts) {
+    if (p < 0) return unmapped(std::move(b), "one of its parts is not a signal of this model");
+    const SignalBinding& part = parts[static_cast<size_t>(p)];
+    if (part.quantity == Quantity::None || part.quantity == Quantity::Composite)
+      return unmapped(std::move(b), "its part `" + part.path + "` is not mapped: " + part.reason);
+    if (part.input != s.input)
+      return unmapped(std::move(b),
+                      "its part `" + part.path + "` is an " + (part.input ? "input" : "output"));
+    const bool scalar =
+        part.value == SignalValue::Real || part.value == SignalValue::Bool || part.value == SignalValue::Int;
+    if (s.input && !scalar)
+      return unmapped(std::move(b), "its part `" + part.path + "` takes more than one value");
+    b.names.push_back(part.path);
+  }
+  b.quantity = Quantity::Composite;
+  return b;
 }
 
 SignalBinding Lowering::bind(const sn::Signal& s) {

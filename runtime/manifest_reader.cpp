@@ -12,10 +12,10 @@ namespace openplx::runtime {
 
 namespace {
 
-using nlohmann::json;
 using mjcf::MjObject;
 using mjcf::Quantity;
 using mjcf::SignalValue;
+using nlohmann::json;
 
 // Enums by the names to_string gives them; each enum runs from 0 to its last enumerator.
 template <typename E>
@@ -47,7 +47,7 @@ mjcf::SignalBinding binding(const json& j) {
   b.path = j.at("path").get<std::string>();
   b.input = j.at("direction").get<std::string>() == "input";
   b.type = j.at("type").get<std::string>();
-  b.value = parse_enum(j.at("value").get<std::string>(), SignalValue::Vec3, "value kind");
+  b.value = parse_enum(j.at("value").get<std::string>(), SignalValue::Vector, "value kind");
   b.unit = j.at("unit").get<std::string>();
   b.enabled = j.at("enabled").get<bool>();
   b.quantity = parse_enum(j.at("quantity").get<std::string>(), Quantity::Constant, "quantity");

@@ -12,7 +12,8 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
   // Names carry the prefix they were emitted with; another one given here replaces it.
   if (!prefix.empty() && prefix != read.prefix) {
     auto rename = [&](std::string& name) {
-      if (name.compare(0, read.prefix.size(), read.prefix) == 0) name = prefix + name.substr(read.prefix.size());
+      if (name.compare(0, read.prefix.size(), read.prefix) == 0)
+        name = prefix + name.substr(read.prefix.size());
     };
     for (mjcf::SignalBinding& b : read.signals) {
       for (std::string& name : b.names) rename(name);
@@ -105,6 +106,9 @@ void Input::set(const Eigen::Vector2d& value) {
 void Input::set(const Eigen::Vector3d& value) {
   state_->write(index_, value.data(), 3, ValueType::Vec3);
 }
+void Input::set(const Eigen::VectorXd& value) {
+  state_->write(index_, value.data(), static_cast<int>(value.size()), ValueType::Vector);
+}
 const SignalInfo& Input::info() const {
   return state_->signals[static_cast<size_t>(index_)].info;
 }
@@ -122,6 +126,11 @@ bool Output::boolean() const {
 Eigen::Vector2d Output::vec2() const {
   Eigen::Vector2d v;
   state_->read(index_, v.data(), 2, ValueType::Vec2);
+  return v;
+}
+Eigen::VectorXd Output::vector() const {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(info().size));
+  state_->read(index_, v.data(), static_cast<int>(v.size()), ValueType::Vector);
   return v;
 }
 Eigen::Vector3d Output::vec3_checked() const {

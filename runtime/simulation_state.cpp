@@ -47,6 +47,8 @@ ValueType value_type(mjcf::SignalValue value) {
       return ValueType::Vec2;
     case mjcf::SignalValue::Vec3:
       return ValueType::Vec3;
+    case mjcf::SignalValue::Vector:
+      return ValueType::Vector;
   }
   return ValueType::Real;
 }
@@ -63,12 +65,19 @@ std::string_view type_name(ValueType type) {
       return "a Vec2";
     case ValueType::Vec3:
       return "a Vec3";
+    case ValueType::Vector:
+      return "a vector";
   }
   return "a value";
 }
 
 std::string describe(const mjcf::SignalBinding& b) {
   if (b.quantity == Quantity::None) return "not mapped: " + b.reason;
+  if (b.quantity == Quantity::Composite) {
+    std::string text = "composite of";
+    for (const std::string& name : b.names) text += " " + name;
+    return text;
+  }
   std::string text(to_string(b.object));
   for (const std::string& name : b.names) text += " " + name;
   return text + ": " + std::string(to_string(b.quantity));
@@ -113,6 +122,7 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
     s.info.mapped = b.quantity != Quantity::None;
     s.info.mujoco = describe(b);
     for (const std::string& name : b.names) {
+      if (b.quantity == Quantity::Composite) break;  // its names are its parts' OpenPLX paths
       const int id = mj_name2id(m, object_type(b.object), name.c_str());
       if (id < 0) {  // the emitter promised it: a mismatch is a bug, so the signal is refused, not misread
         s.info.mapped = false;
@@ -185,6 +195,31 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
   }
   constraint_forces.assign(signals.size(), 0.0);
   init_switches();
+  resolve_composites();
+}
+
+static size_t value_count(ValueType type) {
+  return type == ValueType::Vec2 ? 2 : type == ValueType::Vec3 ? 3 : 1;
+}
+
+// A composite's parts by path, and its size; one with a part that did not resolve is not mapped.
+void SimulationState::resolve_composites() {
+  for (ResolvedSignal& s : signals) {
+    if (s.binding.quantity != Quantity::Composite) continue;
+    s.info.size = 0;
+    for (const std::string& path : s.binding.names) {
+      auto it = by_name.find(path);
+      if (it == by_name.end() || !signals[static_cast<size_t>(it->second)].info.mapped) {
+        s.info.mapped = false;
+        s.info.mujoco = "not mapped: its part `" + path + "` is not mapped";
+        s.binding.quantity = Quantity::None;
+        s.parts.clear();
+        break;
+      }
+      s.parts.push_back(it->second);
+      s.info.size += value_count(signals[static_cast<size_t>(it->second)].info.value);
+    }
+  }
 }
 
 // Enabled states and effort ranges: from the enable bindings (which carry the range when enabled), else from
@@ -371,6 +406,21 @@ void SimulationState::compute_post_step() {
 void SimulationState::write(int index, const double* values, int count, ValueType given) {
   ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
+  if (b.quantity == Quantity::Composite && given == ValueType::Vector) {
+    if (static_cast<size_t>(count) != s.parts.size()) {
+      throw SignalError("input `" + s.info.name + "` takes " + std::to_string(s.parts.size()) +
+                        " values, one per target, not " + std::to_string(count));
+    }
+    for (int i = 0; i < count; ++i) {
+      if (!std::isfinite(values[i])) throw SignalError("input `" + s.info.name + "` got a non-finite value");
+    }
+    for (size_t k = 0; k < s.parts.size(); ++k) {  // each target by its own type (Bool: non-zero is true)
+      const ValueType part = signals[static_cast<size_t>(s.parts[k])].info.value;
+      const double value = part == ValueType::Bool ? (values[k] != 0 ? 1.0 : 0.0) : values[k];
+      write(s.parts[k], &value, 1, part);
+    }
+    return;
+  }
   const bool fits = s.info.value == given || (s.info.value == ValueType::Int && given == ValueType::Real &&
                                               std::floor(values[0]) == values[0]);
   if (!fits) {
@@ -495,6 +545,17 @@ Eigen::Vector3d SimulationState::carried_angular(int b) const {
 void SimulationState::read(int index, double* out, int count, ValueType wanted) const {
   const ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
+  if (b.quantity == Quantity::Composite && wanted == ValueType::Vector) {
+    int at = 0;
+    for (int p : s.parts) {
+      const ValueType part = signals[static_cast<size_t>(p)].info.value;
+      const int n = static_cast<int>(value_count(part));
+      if (at + n > count) break;
+      read(p, out + at, n, part);
+      at += n;
+    }
+    return;
+  }
   const bool fits = s.info.value == wanted || (wanted == ValueType::Real && s.info.value == ValueType::Int);
   if (!fits) {
     throw SignalError("output `" + s.info.name + "` is " + std::string(type_name(s.info.value)) + ", not " +

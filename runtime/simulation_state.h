@@ -28,6 +28,7 @@ struct ResolvedSignal {
   double scale = 1.0;
   const double* direct3 = nullptr;  // Vec3 outputs that are three consecutive mjData numbers
   int bias = -1;                    // MotorForce: the motor's bias actuator, -1 when it has none
+  std::vector<int> parts;           // Composite: its parts' indices
 };
 
 // What an interaction acts with when enabled, and whether it is (see Quantity::InteractionEnabled). Range
@@ -84,6 +85,7 @@ struct SimulationState {
   void cache_constraint_forces();
   void ramp_engagements();
   void init_switches();
+  void resolve_composites();
   EffortSwitch& effort_switch(const ResolvedSignal& s);
   void apply(const ResolvedSignal& s);
   void request_output(int index);  // Simulation::output() asked for it: start computing it if it needs to be

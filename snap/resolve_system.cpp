@@ -128,6 +128,7 @@ class SystemBuilder {
       view_.collision_filters[f].group2 = collision_group(filter_groups_[f].second);
     }
     for (size_t k = 0; k < view_.signals.size(); ++k) resolve_source(view_.signals[k], signal_sources_[k]);
+    resolve_composites();
     view_.gravity = read_gravity(in_, view_.root >= 0 ? view_.nodes[view_.root].object : fe::kNoObject);
     return std::move(view_);
   }
@@ -509,6 +510,14 @@ class SystemBuilder {
     signal.where = where_of(id);
     if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
       signal.enabled = e->bool_value;
+    std::vector<fe::ObjectId> parts;
+    for (const char* list : {"targets", "joint_sources", "object_sources"}) {
+      if (!obj.has(list)) continue;
+      signal.composite = true;
+      for (fe::ObjectId part : in_.objects(id, list)) parts.push_back(part);
+    }
+    if (obj.has("sensors")) signal.sensors = in_.objects(id, "sensors").size();
+    composite_parts_.push_back(std::move(parts));
     view_.signals.push_back(std::move(signal));
   }
 
@@ -549,6 +558,18 @@ class SystemBuilder {
   }
 
   // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
+  // A composite's parts are signals of the tree, found by object.
+  void resolve_composites() {
+    std::unordered_map<fe::ObjectId, int> index;
+    for (size_t k = 0; k < view_.signals.size(); ++k) index[view_.signals[k].object] = static_cast<int>(k);
+    for (size_t k = 0; k < view_.signals.size(); ++k) {
+      for (fe::ObjectId part : composite_parts_[k]) {
+        auto it = index.find(part);
+        view_.signals[k].parts.push_back(it == index.end() ? -1 : it->second);
+      }
+    }
+  }
+
   void resolve_source(Signal& signal, fe::ObjectId source) {
     if (source == fe::kNoObject) return;
     if (sources_.empty()) build_source_index();
@@ -744,6 +765,7 @@ class SystemBuilder {
   fe::DiagnosticSink& sink_;
   ResolvedSystem view_;
   std::vector<fe::ObjectId> geometry_materials_;                      // per geometry: its `material`
+  std::vector<std::vector<fe::ObjectId>> composite_parts_;            // per signal: a composite's parts
   std::vector<fe::ObjectId> signal_sources_;                          // per signal: its `source`
   std::vector<std::pair<fe::ObjectId, fe::ObjectId>> filter_groups_;  // per collision filter
   std::unordered_map<fe::ObjectId, int> material_of_;

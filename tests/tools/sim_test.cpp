@@ -106,8 +106,9 @@ TEST(Sim, ValueSyntax) {
   EXPECT_TRUE(parse_signal_value("true")->is_bool);
   EXPECT_EQ(parse_signal_value("{1, -2}")->numbers, (std::vector<double>{1, -2}));
   EXPECT_EQ(parse_signal_value("{1,2,3}")->numbers, (std::vector<double>{1, 2, 3}));
-  EXPECT_FALSE(parse_signal_value("{1}"));
-  EXPECT_FALSE(parse_signal_value("{1, 2, 3, 4}"));
+  EXPECT_EQ(parse_signal_value("{1}")->numbers, std::vector<double>{1});  // a one-target composite
+  EXPECT_EQ(parse_signal_value("{1, 2, 3, 4}")->numbers.size(), 4u);      // a composite robot input
+  EXPECT_FALSE(parse_signal_value("{}"));
   EXPECT_FALSE(parse_signal_value("1.5x"));
   EXPECT_FALSE(parse_signal_value("nan"));
   EXPECT_FALSE(parse_signal_value(""));

@@ -25,13 +25,18 @@ std::string_view type_text(rt::ValueType type) {
       return "Vec2";
     case rt::ValueType::Vec3:
       return "Vec3";
+    case rt::ValueType::Vector:
+      return "Vector";
   }
   return "?";
 }
 
 void apply(rt::Simulation& sim, const Assignment& a) {
   rt::Input input = sim.input(a.name);
-  if (a.value.is_bool) {
+  if (input.info().value == rt::ValueType::Vector) {  // a composite: {a, b, ...}, one value per target
+    input.set(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
+        a.value.numbers.data(), static_cast<Eigen::Index>(a.value.numbers.size()))));
+  } else if (a.value.is_bool) {
     input.set(a.value.numbers[0] != 0);
   } else if (a.value.numbers.size() == 2) {
     input.set(Eigen::Vector2d(a.value.numbers[0], a.value.numbers[1]));
@@ -54,6 +59,10 @@ std::vector<double> values(const rt::Output& output) {
     case rt::ValueType::Vec3: {
       const Eigen::Vector3d v = output.vec3();
       return {v.x(), v.y(), v.z()};
+    }
+    case rt::ValueType::Vector: {
+      const Eigen::VectorXd v = output.vector();
+      return {v.data(), v.data() + v.size()};
     }
     default:
       return {output.real()};

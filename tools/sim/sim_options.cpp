@@ -28,7 +28,7 @@ std::optional<Assignment> parse_assignment(const std::string& text, std::string&
   }
   std::optional<SignalValue> value = parse_signal_value(text.substr(eq + 1));
   if (!value) {
-    error = "'" + text.substr(eq + 1) + "' is not a number, true/false, {a, b} or {x, y, z}";
+    error = "'" + text.substr(eq + 1) + "' is not a number, true/false or {a, b, ...}";
     return std::nullopt;
   }
   return Assignment{0.0, text.substr(0, eq), *value};
@@ -47,7 +47,7 @@ std::optional<SignalValue> parse_signal_value(const std::string& text) {
       if (!number) return std::nullopt;
       value.numbers.push_back(*number);
     }
-    if (value.numbers.size() != 2 && value.numbers.size() != 3) return std::nullopt;
+    if (value.numbers.empty()) return std::nullopt;  // {a, b}, {x, y, z}, or a composite's {a, b, c, ...}
     return value;
   }
   if (std::optional<double> number = parse_number(text)) return SignalValue{{*number}, false};
@@ -58,7 +58,9 @@ std::string sim_usage() {
   return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--timestep S] [--set "
          "NAME=VALUE]...\n"
          "                   [--at T NAME=VALUE]... [--print NAME]... [--csv FILE] [--list]\n"
-         "Runs an OpenPLX model headless in MuJoCo. VALUE is a number, true/false, {a, b} or {x, y, z}.\n"
+         "Runs an OpenPLX model headless in MuJoCo. VALUE is a number, true/false, {a, b}, {x, y, z} or, for "
+         "a\n"
+         "composite robot input, one value per target: {a, b, c, ...}.\n"
          "  --time T         simulated seconds (default 1)\n"
          "  --timestep S     MuJoCo's time step in seconds (default 0.002)\n"
          "  --set NAME=V     set an input before the first step\n"

@@ -11,11 +11,11 @@
 //   left.after_step(); right.after_step();
 //   double angle = right.output("hinge.angle_output").real();
 //
-// The bridge writes mjData (controls, velocities of kinematic bodies) and, for inputs MuJoCo has no control for
-// (enable flags, effort ranges, clutch engagement, gear ratios), mjModel fields of its own model's elements.
-// before_step() applies the laws MJCF cannot state (engine curves, torque converters); after_step() moves
-// kinematic bodies, ramps clutches and keeps the constraint forces outputs read. Names are OpenPLX paths
-// relative to the emitted root model, as for Simulation.
+// The bridge writes mjData (controls, velocities of kinematic bodies) and, for inputs MuJoCo has no control
+// for (enable flags, effort ranges, clutch engagement, gear ratios), mjModel fields of its own model's
+// elements. before_step() applies the laws MJCF cannot state (engine curves, torque converters); after_step()
+// moves kinematic bodies, ramps clutches and keeps the constraint forces outputs read. Names are OpenPLX
+// paths relative to the emitted root model, as for Simulation.
 #pragma once
 
 #include <memory>

@@ -44,7 +44,7 @@ struct LoadOptions {
   double timestep = 0.002;                // MuJoCo's time step, s (like openplx2mjcf --timestep)
 };
 
-enum class ValueType { Real, Bool, Int, Vec2, Vec3 };
+enum class ValueType { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a composite robot signal
 
 struct SignalInfo {
   std::string name;  // path relative to the root model
@@ -53,6 +53,7 @@ struct SignalInfo {
   std::string unit;     // SI: "rad", "m/s", "N*m", ... ("" for Bool and dimensionless)
   bool enabled = true;  // the model's `enabled` flag (every output can be read regardless)
   bool mapped = false;  // false: MuJoCo has no counterpart, `mujoco` says why
+  size_t size = 1;      // how many numbers it carries (Vec2 2, Vec3 3, a composite its parts' total)
   std::string mujoco;   // what it reads or writes, e.g. "actuator motor: ctrl", or why it is not mapped
 };
 
@@ -73,6 +74,7 @@ class Input {
   void set(bool value);
   void set(const Eigen::Vector2d& value);
   void set(const Eigen::Vector3d& value);
+  void set(const Eigen::VectorXd& value);  // a composite (Robotics RobotInput): one value per target
   const SignalInfo& info() const;
 
  private:
@@ -89,6 +91,7 @@ class Output {
   double real() const { return direct_ ? scale_ * *direct_ : real_checked(); }
   bool boolean() const;
   Eigen::Vector2d vec2() const;
+  Eigen::VectorXd vector() const;  // a composite (Robotics RobotOutput): its sources' values in order
   Eigen::Vector3d vec3() const {
     return direct3_ ? Eigen::Vector3d(direct3_[0], direct3_[1], direct3_[2]) : vec3_checked();
   }
