@@ -21,8 +21,9 @@ const std::string kCartPole = std::string(OPENPLX_SAMPLES_DIR) + "/cart_pole.ope
 
 void emit(const fs::path& out, const std::string& prefix) {
   std::ostringstream text, errors;
-  ASSERT_EQ(openplx::cli::run({kCartPole, "-o", out.string(), "--prefix", prefix, "--no-keyframe"}, text, errors),
-            0)
+  ASSERT_EQ(
+      openplx::cli::run({kCartPole, "-o", out.string(), "--prefix", prefix, "--no-keyframe"}, text, errors),
+      0)
       << errors.str();
 }
 
@@ -48,7 +49,8 @@ TEST(SignalBridge, TwoCopiesInOneSceneMoveAsTheModelDoesAlone) {
   const openplx::testing::ScratchDir dir;
   Scene scene(dir.path());
   ASSERT_NE(scene.m, nullptr);
-  rt::SignalBridge left = rt::SignalBridge::attach((dir / "left_cart_pole.signals.json").string(), scene.m, scene.d);
+  rt::SignalBridge left =
+      rt::SignalBridge::attach((dir / "left_cart_pole.signals.json").string(), scene.m, scene.d);
   rt::SignalBridge right =
       rt::SignalBridge::attach((dir / "right_cart_pole.signals.json").string(), scene.m, scene.d);
   rt::Simulation alone = rt::Simulation::load(kCartPole);
