@@ -6,7 +6,7 @@
 #   OPENPLX_SKIP_FUZZ_BUILD=1 ./test.sh   skips the fuzz targets' build
 set -euo pipefail
 cd "$(dirname "$0")"
-tools/install-deps.sh --fuzz
+tools/install-deps.sh --fuzz --tests
 jobs=$(nproc)
 
 # run_suite BUILD_DIR [VAR=VALUE]...: ctest in random order with a fresh empty TMPDIR, which must be empty again

@@ -2,13 +2,23 @@
 # Installs the Debian packages the build needs, only those missing. Used by ./run.sh and ./test.sh.
 #   tools/install-deps.sh            build and test dependencies
 #   tools/install-deps.sh --fuzz     also clang and its sanitizer runtime (libFuzzer)
+#   tools/install-deps.sh --tests    also Node and the pinned mujoco-js the current-MuJoCo test runs
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 packages=(cmake make g++ pkg-config clang-format
   libmujoco-dev libqhull-dev libmujoco-samples libeigen3-dev liburdfdom-dev libtinyxml2-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev)
-if [[ "${1:-}" == "--fuzz" ]]; then
-  packages+=(clang libclang-rt-14-dev)
+tests=0
+for arg in "$@"; do
+  case "$arg" in
+    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    --tests) tests=1 ;;  # Node and the pinned MuJoCo WebAssembly build the tests compare with
+  esac
+done
+if [[ $tests -eq 1 ]]; then
+  command -v node >/dev/null || packages+=(nodejs)
+  command -v npm >/dev/null || packages+=(npm)
 fi
 
 missing=()
@@ -17,14 +27,21 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-[[ ${#missing[@]} -eq 0 ]] && exit 0
+install_packages() {
+  echo "Installing missing packages: ${missing[*]}"
+  local sudo_cmd=()
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || { echo "error: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+    sudo_cmd=(sudo)
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+[[ ${#missing[@]} -eq 0 ]] || install_packages
 
-echo "Installing missing packages: ${missing[*]}"
-sudo_cmd=()
-if [[ $(id -u) -ne 0 ]]; then
-  command -v sudo >/dev/null || { echo "error: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
-  sudo_cmd=(sudo)
+# mujoco-js, exactly as tests/current_mujoco/package-lock.json pins it (npm's registry; not at build time).
+if [[ $tests -eq 1 && ! -f tests/current_mujoco/node_modules/mujoco-js/package.json ]]; then
+  echo "Installing mujoco-js for tests/current_mujoco"
+  (cd tests/current_mujoco && npm ci --no-audit --no-fund --loglevel=error)
 fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
