@@ -1,6 +1,6 @@
-// Composite robot signals (Robotics.Signals.RobotInput / RobotOutput): the two-joint arm sample driven through
-// one RobotInput vector of its two torques and read through one RobotOutput of its angles, speeds and tip,
-// exactly as the same arm driven and read signal by signal; wrong sizes are refused.
+// Composite robot signals (Robotics.Signals.RobotInput / RobotOutput): the two-joint arm sample driven
+// through one RobotInput vector of its two torques and read through one RobotOutput of its angles, speeds and
+// tip, exactly as the same arm driven and read signal by signal; wrong sizes are refused.
 #include <gtest/gtest.h>
 
 #include <fstream>
