@@ -53,6 +53,7 @@ enum class ExprKind : uint8_t {
   Name,        // text = identifier
   This,
   Member,       // operands[0] . text
+  Index,        // operands[0] [ operands[1] ]
   Call,         // operands[0] = callee (Name or Member), operands[1..] = arguments
   Unary,        // op, operands[0]
   Binary,       // operands[0] op operands[1]
@@ -95,6 +96,8 @@ struct Member {
   SourceRange range;
   QualifiedName path;  // attribute name (one part), becomes/assignment path, annotation name, trait name
   bool is_optional = false;
+  bool is_reference =
+      false;  // Attribute: `name is Type reference`, a reference to an instance made elsewhere
   bool is_static = false;
   TypeExpr type;                       // Attribute, Becomes
   std::optional<ExprId> value;         // Attribute, Becomes, Assignment, Annotation

@@ -46,6 +46,12 @@ void append_expr(std::string& out, const Document& doc, ExprId id) {
       out += '.';
       out += name_text(e.text, e.quoted);
       break;
+    case ExprKind::Index:
+      append_expr(out, doc, e.operands[0]);
+      out += '[';
+      append_expr(out, doc, e.operands[1]);
+      out += ']';
+      break;
     case ExprKind::Call:
       append_expr(out, doc, e.operands[0]);
       list(1, "(", ")");
@@ -124,7 +130,7 @@ class AstDumper {
         break;
       case MemberKind::Attribute:
         line = std::string(m.is_optional ? "optional attr " : "attr ") + to_string(m.path) + " is " +
-               type(m.type);
+               type(m.type) + (m.is_reference ? " reference" : "");
         break;
       case MemberKind::Becomes:
         line = "becomes " + to_string(m.path) + " -> " + type(m.type);

@@ -48,10 +48,17 @@ const Member* find_assignment(const Decl& decl, std::string_view name) {
 
 }  // namespace
 
+// "Math", "Math@0.20.2", "Math==0.20.2" (the releases' pin); a range ("Math>=0.19") names the bundle and
+// is not checked.
 BundleDependency parse_dependency(const std::string& text) {
-  auto at = text.find('@');
-  if (at == std::string::npos) return {text, ""};
-  return {text.substr(0, at), text.substr(at + 1)};
+  const size_t op = text.find_first_of("@=<>~!");
+  if (op == std::string::npos) return {text, ""};
+  std::string name = text.substr(0, op);
+  while (!name.empty() && name.back() == ' ') name.pop_back();
+  std::string rest = text.substr(op);
+  const bool exact = rest.starts_with("@") || rest.starts_with("==");
+  const size_t start = rest.find_first_not_of("@=<>~! ");
+  return {std::move(name), exact && start != std::string::npos ? rest.substr(start) : ""};
 }
 
 std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceManager& sources,
@@ -110,11 +117,14 @@ std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceMan
   return result;
 }
 
-std::vector<std::string> bundle_search_path(const std::vector<std::string>& extra_dirs) {
+std::vector<std::string> bundle_search_path(const std::vector<std::string>& extra_dirs,
+                                            bool default_bundles) {
   std::vector<std::string> path;
   std::error_code ec;
   const fs::path installed = executable_dir() / "../share/openplx2mjcf/bundles";
-  if (fs::is_directory(installed, ec)) {
+  if (!default_bundles) {
+    // only the user's: OPENPLX_BUNDLE_PATH and -B (an AGX/OpenPLX installation's bundles)
+  } else if (fs::is_directory(installed, ec)) {
     path.push_back(normalised(installed));
   } else if (std::string source = OPENPLX_SOURCE_BUNDLES_DIR;
              !source.empty() && fs::is_directory(source, ec)) {

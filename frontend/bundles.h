@@ -31,8 +31,10 @@ struct BundleConfig {
 std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceManager& sources,
                                                DiagnosticSink& sink);
 
-// The folders searched for bundles, in order: project bundles, OPENPLX_BUNDLE_PATH, then `extra_dirs`.
-std::vector<std::string> bundle_search_path(const std::vector<std::string>& extra_dirs);
+// The folders searched for bundles, in order: project bundles (unless `default_bundles` is false),
+// OPENPLX_BUNDLE_PATH, then `extra_dirs`.
+std::vector<std::string> bundle_search_path(const std::vector<std::string>& extra_dirs,
+                                            bool default_bundles = true);
 
 // Every bundle under the search path (first of each name wins).
 std::vector<BundleConfig> discover_bundles(const std::vector<std::string>& search_path,

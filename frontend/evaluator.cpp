@@ -366,7 +366,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     slot.name = name;
     slot.declaration = &e;
     slot.declared_in = model;
-    slot.optional = e.member->is_optional;
+    slot.optional = e.member->is_optional || e.member->is_reference;  // a reference nobody set stays unset
     index->emplace(name, static_cast<uint32_t>(obj.slots.size()));
     obj.slots.push_back(std::move(slot));
   };
@@ -723,7 +723,7 @@ void Evaluator::evaluate_all(ObjectId root) {
 
 bool Evaluator::is_path_expression(const Document& doc, ExprId expr) {
   const Expr* e = &doc.expr(expr);
-  while (e->kind == ExprKind::Member) e = &doc.expr(e->operands[0]);
+  while (e->kind == ExprKind::Member || e->kind == ExprKind::Index) e = &doc.expr(e->operands[0]);
   return e->kind == ExprKind::Name || e->kind == ExprKind::This;
 }
 
@@ -985,6 +985,29 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
               : "`" + entity.ns->qualified + "` is a namespace, not a value");
       return Value::error();
     }
+    case ExprKind::Index: {
+      // `links[0]`: an element of an array attribute (an object element is the object itself).
+      const Value array = eval(e.operands[0], scope, nullptr);
+      const Value index = eval(e.operands[1], scope, nullptr);
+      if (array.is_error() || index.is_error()) return Value::error();
+      if (array.kind != Value::Kind::Array) {
+        sink_.report(DiagCode::TypeMismatch, doc.expr(e.operands[0]).range,
+                     "only arrays can be indexed, not a " + describe_value_type(array, graph_));
+        return Value::error();
+      }
+      if (index.kind != Value::Kind::Int) {
+        sink_.report(DiagCode::TypeMismatch, doc.expr(e.operands[1]).range,
+                     "an index must be an Int, not a " + describe_value_type(index, graph_));
+        return Value::error();
+      }
+      if (index.int_value < 0 || static_cast<size_t>(index.int_value) >= array.array.size()) {
+        sink_.report(DiagCode::IndexOutOfRange, doc.expr(e.operands[1]).range,
+                     "index " + std::to_string(index.int_value) + " is outside the array's " +
+                         std::to_string(array.array.size()) + " elements");
+        return Value::error();
+      }
+      return array.array[static_cast<size_t>(index.int_value)];
+    }
     case ExprKind::Call:
       return eval_call(e, scope);
     case ExprKind::Unary:
@@ -1014,6 +1037,8 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
 }
 
 Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type* expected) {
+  // `{}`: nothing given, so an empty array, or an instance with its defaults.
+  if (e.operands.empty() && expected && expected->is_array) return Value::of_array({});
   if (!expected || expected->kind != TypeKind::Model || expected->is_array) {
     sink_.report(DiagCode::InitializerType, e.range,
                  expected && expected->kind != TypeKind::Error
@@ -1027,6 +1052,7 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
     return Value::error();
   }
   ObjectId object = make_free_object(model);
+  if (e.operands.empty()) return Value::of_object(object);
   std::vector<uint32_t> fields;
   for (uint32_t i = 0; i < graph_.at(object).slots.size(); ++i) {
     const Slot& slot = graph_.at(object).slots[i];

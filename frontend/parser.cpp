@@ -506,16 +506,35 @@ void Parser::parse_member(std::vector<Member>& out, BlockContext context) {
   member.path = parse_qualified_name();
   if (panic_) return;
   if (accept(TokenKind::KwIs)) {
-    if (member.path.parts.size() != 1) {
-      error(DiagCode::ExpectedSimpleName, member.path.range,
-            "a new attribute needs a simple name, not the path `" + to_string(member.path) +
-                "`; to set a nested attribute write `path: value`");
-      return;
-    }
     member.kind = MemberKind::Attribute;
     member.type = parse_type_expr();
     if (panic_) return;
+    // `reference`: the attribute refers to an instance made elsewhere (a contextual word, not reserved).
+    if (at(TokenKind::Identifier) && text(cur()) == "reference") {
+      advance();
+      member.is_reference = true;
+    }
     parse_member_tail(member, true);
+    if (panic_) return;
+    if (member.path.parts.size() > 1) {
+      // `marshalling.angle is RealField`: declares `angle` inside `marshalling`, as the nested block
+      // `marshalling:` / `angle is RealField` would.
+      member.range = range_from(begin);
+      Member inner = std::move(member);
+      const QualifiedName path = inner.path;
+      inner.path = {path.parts.subspan(path.parts.size() - 1), path.parts.back().range};
+      for (size_t k = path.parts.size() - 1; k-- > 0;) {
+        Member outer;
+        outer.kind = MemberKind::Assignment;
+        outer.range = inner.range;
+        outer.path = {path.parts.subspan(k, 1), path.parts[k].range};
+        outer.has_block = true;
+        outer.block.push_back(std::move(inner));
+        inner = std::move(outer);
+      }
+      out.push_back(std::move(inner));
+      return;
+    }
   } else if (member.is_optional) {
     error_here("`is` after the optional attribute's name");
     return;
@@ -819,6 +838,15 @@ ExprId Parser::parse_postfix() {
     } else if (at(TokenKind::LParen) &&
                (doc_.expr(result).kind == ExprKind::Name || doc_.expr(result).kind == ExprKind::Member)) {
       result = parse_call(result);
+    } else if (at(TokenKind::LBracket) && cur().begin == doc_.expr(result).range.end) {
+      // `links[0]`: indexing, written directly after its operand (a `[` after a space starts no index).
+      advance();
+      ExprId index = parse_expr();
+      if (!panic_) expect(TokenKind::RBracket, "`]` after the index");
+      Expr e;
+      e.kind = ExprKind::Index;
+      e.range = range_from(doc_.expr(result).range.begin);
+      result = add_expr_with(std::move(e), {result, index});
     } else {
       return result;
     }
@@ -891,9 +919,6 @@ ExprId Parser::parse_list(ExprKind list_kind, TokenKind close, std::string_view 
   }
   if (!panic_) expect(close, close_text);
   e.range = range_from(begin);
-  if (list_kind == ExprKind::Initializer && scratch_.size() == first) {
-    error(DiagCode::EmptyInitializer, e.range, "an initializer `{...}` needs at least one value");
-  }
   return add_expr(std::move(e), first);
 }
 

@@ -13,7 +13,8 @@ namespace fs = std::filesystem;
 Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, DiagnosticSink& sink) {
   Evaluation result;
   result.program = std::make_unique<Program>(sources, sink);
-  result.program->set_bundles(discover_bundles(bundle_search_path(request.bundle_dirs), sources, sink));
+  result.program->set_bundles(
+      discover_bundles(bundle_search_path(request.bundle_dirs, request.default_bundles), sources, sink));
   // A URDF given directly is read as a one-line document importing it, rooted at a model of the robot's name
   // (the file's stem), so the command line and the runtime take robots like any OpenPLX file.
   const fs::path file(request.path);

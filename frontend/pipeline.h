@@ -18,6 +18,7 @@ struct LoadRequest {
   std::optional<std::string> model;      // root model; default: the last model of the file
   std::vector<std::string> bundle_dirs;  // -B folders
   std::optional<std::string> text;       // when set, the file's content (not read from disk)
+  bool default_bundles = true;           // false (--no-default-bundles): only -B and OPENPLX_BUNDLE_PATH
 };
 
 struct Evaluation {

@@ -549,6 +549,12 @@ void Program::flatten(ModelInfo* model, const std::vector<Member>& members,
         }
         break;
       case MemberKind::Annotation: {
+        // AGX's own settings (`.agx_*`) mean nothing to MuJoCo: accepted, and listed where a user wrote them.
+        if (m.path.parts[0].text.starts_with("agx_") && !model->doc->bundle) {
+          sink_.report(DiagCode::AgxAnnotation, m.range,
+                       "AGX annotation `." + std::string(m.path.parts[0].text) +
+                           "` has no MuJoCo counterpart; it was ignored");
+        }
         std::vector<std::string_view> path = extended(m.path);
         if (prefix.empty()) {
           model->annotations[std::string(m.path.parts[0].text)] = *m.value;

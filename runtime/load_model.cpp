@@ -52,14 +52,17 @@ mjModel* load_xml(const std::string& xml, std::string& error) {
 }  // namespace
 
 LoadedModel load_model(const std::string& path, const std::string& model,
-                       const std::vector<std::string>& bundle_paths, double timestep) {
+                       const std::vector<std::string>& bundle_paths, double timestep, bool default_bundles) {
   fe::SourceManager sources;
   fe::DiagnosticSink sink;
   fe::LoadRequest request;
   request.path = path;
   if (!model.empty()) request.model = model;
   request.bundle_dirs = bundle_paths;
-  for (const std::string& dir : default_bundle_dirs()) request.bundle_dirs.push_back(dir);
+  request.default_bundles = default_bundles;
+  if (default_bundles) {
+    for (const std::string& dir : default_bundle_dirs()) request.bundle_dirs.push_back(dir);
+  }
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   LoadedModel loaded;
   mjcf::Emitted emitted;

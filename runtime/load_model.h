@@ -22,7 +22,8 @@ struct LoadedModel {
 
 // Throws LoadError with the printed diagnostics when the model has errors or MuJoCo rejects the MJCF.
 LoadedModel load_model(const std::string& path, const std::string& model,
-                       const std::vector<std::string>& bundle_paths, double timestep);
+                       const std::vector<std::string>& bundle_paths, double timestep,
+                       bool default_bundles = true);
 
 // The folders add_default_bundle_dir registered.
 std::vector<std::string>& default_bundle_dirs();

@@ -11,7 +11,8 @@ namespace openplx::runtime {
 Simulation Simulation::load(const std::string& path, const LoadOptions& options) {
   if (!(options.timestep > 0) || !std::isfinite(options.timestep))
     throw LoadError(path + ": error: the time step must be a positive number of seconds\n");
-  LoadedModel loaded = load_model(path, options.model, options.bundle_paths, options.timestep);
+  LoadedModel loaded =
+      load_model(path, options.model, options.bundle_paths, options.timestep, options.default_bundles);
   auto state = std::make_unique<SimulationState>();
   state->m = loaded.model;
   state->d = mj_makeData(state->m);

@@ -417,11 +417,6 @@ TEST_F(MalformedInput, AnnotationValueIsAnExpression) {
   EXPECT_EQ(member_names(doc_.decls[0].body), Names{"y"});  // a negative number is a constant
 }
 
-TEST_F(MalformedInput, EmptyInitializer) {
-  parse("M:\n  a is V: {}\n");
-  expect_diag(fe::DiagCode::EmptyInitializer, 2, 11);
-}
-
 TEST_F(MalformedInput, MethodInANestedBlock) {
   parse("M:\n  a is T:\n    fn f()\n    c: 1\n");
   expect_diag(fe::DiagCode::MisplacedDeclaration, 3, 5);
@@ -461,11 +456,6 @@ TEST_F(MalformedInput, ConstGlobalAttribute) {
   parse("const P is Real: 3.0\n");
   expect_diag(fe::DiagCode::MisplacedDeclaration, 1, 1);
   EXPECT_TRUE(doc_.decls.empty());
-}
-
-TEST_F(MalformedInput, NewAttributeWithADottedName) {
-  parse("M:\n  a.b is Real\n");
-  expect_diag(fe::DiagCode::ExpectedSimpleName, 2, 3);
 }
 
 TEST_F(MalformedInput, ModelWithAUnionBase) {

@@ -109,6 +109,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
     return false;
   }
   fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
+  request.default_bundles = options.default_bundles;
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   if (evaluation.root == fe::kNoObject || sink.has_errors()) return true;
   if (options.dump == DumpKind::Values) fe::dump_values(text, *evaluation.evaluator, evaluation.root);
@@ -147,7 +148,8 @@ std::string manifest_path(const std::string& output) {
 
 std::string usage() {
   return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--prefix P] "
-         "[--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--dump=tokens|ast|values|snap]\n"
+         "[--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--no-default-bundles]\n"
+         "                    [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
          "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the "
@@ -163,6 +165,8 @@ std::string usage() {
          "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
          "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
          "                 numbers (the file loads in both either way)\n"
+         "  --no-default-bundles  only the bundles of -B and OPENPLX_BUNDLE_PATH (e.g. an AGX "
+         "installation's)\n"
          "  --no-keyframe  no \"initial\" keyframe, for files <include>d into a bigger scene (a keyframe "
          "must\n"
          "                 cover the whole scene; a SignalBridge sets the initial controls)\n"
@@ -202,6 +206,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (arg == "--strict") {
       options.strict = true;
+      continue;
+    }
+    if (arg == "--no-default-bundles") {
+      options.default_bundles = false;
       continue;
     }
     if (arg == "--no-keyframe") {

@@ -21,11 +21,12 @@ struct CliOptions {
   std::optional<std::string> output;  // "-" is stdout
   std::vector<std::string> bundle_dirs;
   bool strict = false;
-  bool check = false;       // --check: load the MJCF in MuJoCo and compare with SNAP
-  std::string prefix;       // --prefix P: prepended to every MuJoCo name
-  double timestep = 0.002;  // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
-  bool mujoco3 = false;     // --mujoco 3: soft-weld laws of MuJoCo 3.x
-  bool keyframe = true;     // --no-keyframe: leave the initial keyframe out
+  bool check = false;           // --check: load the MJCF in MuJoCo and compare with SNAP
+  std::string prefix;           // --prefix P: prepended to every MuJoCo name
+  double timestep = 0.002;      // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
+  bool mujoco3 = false;         // --mujoco 3: soft-weld laws of MuJoCo 3.x
+  bool keyframe = true;         // --no-keyframe: leave the initial keyframe out
+  bool default_bundles = true;  // --no-default-bundles: only -B and OPENPLX_BUNDLE_PATH bundles
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;

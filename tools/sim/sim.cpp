@@ -93,6 +93,7 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
   rt::LoadOptions load;
   load.model = options.model;
   load.bundle_paths = options.bundle_dirs;
+  load.default_bundles = options.default_bundles;
   load.timestep = options.timestep;
   rt::Simulation sim = rt::Simulation::load(options.input, load);
   for (const std::string& w : sim.warnings()) err << w;

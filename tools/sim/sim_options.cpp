@@ -55,7 +55,8 @@ std::optional<SignalValue> parse_signal_value(const std::string& text) {
 }
 
 std::string sim_usage() {
-  return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--timestep S] [--set "
+  return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--no-default-bundles] [--time T] [--timestep "
+         "S] [--set "
          "NAME=VALUE]...\n"
          "                   [--at T NAME=VALUE]... [--print NAME]... [--csv FILE] [--list]\n"
          "Runs an OpenPLX model headless in MuJoCo. VALUE is a number, true/false, {a, b}, {x, y, z} or, for "
@@ -86,6 +87,8 @@ std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args
       options.help = true;
     } else if (arg == "--list") {
       options.list = true;
+    } else if (arg == "--no-default-bundles") {
+      options.default_bundles = false;
     } else if (arg == "--model") {
       if (!value()) return std::nullopt;
       options.model = args[++i];

@@ -25,6 +25,7 @@ struct SimOptions {
   std::string input;
   std::string model;
   std::vector<std::string> bundle_dirs;
+  bool default_bundles = true;  // --no-default-bundles
   double time = 1.0;
   double timestep = 0.002;
   std::vector<Assignment> assignments;  // --set then --at, in the order given

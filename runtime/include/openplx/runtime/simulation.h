@@ -42,6 +42,7 @@ struct LoadOptions {
   std::string model;                      // the root model; empty: the file's last model
   std::vector<std::string> bundle_paths;  // extra bundle folders (like openplx2mjcf -B)
   double timestep = 0.002;                // MuJoCo's time step, s (like openplx2mjcf --timestep)
+  bool default_bundles = true;  // false: only bundle_paths and OPENPLX_BUNDLE_PATH (--no-default-bundles)
 };
 
 enum class ValueType { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a composite robot signal
