@@ -20,6 +20,14 @@ std::optional<std::string> import_plugin_source(const std::string& path, const s
     return "`" + model_name + "` is Visuals.Geometries.ExternalTriMeshGeometry:\n    path: @\"" + path +
            "\"\n";
   }
+  if (extension == ".png") {
+    // An image: a texture reading the file (MuJoCo loads PNG textures itself).
+    return "`" + model_name + "` is Visuals.Textures.Texture:\n    path: @\"" + path + "\"\n";
+  }
+  if (extension == ".jpg" || extension == ".jpeg") {
+    error = "JPEG images cannot be imported: MuJoCo 2.2.2 reads PNG textures only; convert the image to PNG";
+    return std::nullopt;
+  }
   if (extension == ".agx") {
     error =
         "AGX archives (.agx) cannot be imported: they are a binary AGX Dynamics format with no OpenPLX or "

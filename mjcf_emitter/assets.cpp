@@ -7,7 +7,8 @@
 namespace openplx::mjcf {
 
 // Visuals materials as MJCF materials: base colour tint -> rgba, 1 - roughness -> shininess (MuJoCo's is
-// a glossiness), metallic -> reflectance. Textures have no mapping yet.
+// a glossiness), metallic -> reflectance, a base colour image -> a 2-D <texture> the material repeats
+// scale_u x scale_v times.
 void Lowering::emit_visual_materials() {
   for (const sn::VisualMaterial& m : view_.visual_materials) {
     Element& material = assets_->add("material");
@@ -18,6 +19,7 @@ void Lowering::emit_visual_materials() {
     }
     if (m.roughness) material.set("shininess", std::clamp(1.0 - *m.roughness, 0.0, 1.0));
     if (m.metallic) material.set("reflectance", std::clamp(*m.metallic, 0.0, 1.0));
+    for (const sn::FileTexture& t : m.file_textures) emit_texture(material, m, t);
     // Texture maps carry pixels inline (base64); MuJoCo 2.2.2 reads textures only from image files.
     for (const sn::InlineTexture& texture : m.inline_textures) {
       warn(texture.where, "`" + m.path + "." + texture.attribute +
@@ -25,6 +27,45 @@ void Lowering::emit_visual_materials() {
                               "files); the material keeps its colour only");
     }
   }
+}
+
+// A texture map from an image file. MuJoCo 2.2.2 materials take one texture, shown as the surface colour
+// (modulated by rgba), repeated and linearly filtered with mipmaps: other maps, channel swizzles, offsets,
+// other wrap and filter modes are warned at the texture, with what was done instead.
+void Lowering::emit_texture(Element& material, const sn::VisualMaterial& m, const sn::FileTexture& t) {
+  namespace fs = std::filesystem;
+  const std::string attribute = m.path + "." + t.attribute;
+  const std::string where = "`" + attribute + "`";
+  if (t.attribute != "base_color_map") {
+    warn(t.where, where +
+                      " is a texture MuJoCo 2.2.2 materials have no slot for (they take one colour "
+                      "texture); it was left out");
+    return;
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(t.file, ec)) {
+    sink_.report(fe::DiagCode::MjcfMissingAsset, t.where,
+                 "texture file " + t.file + " of " + where + " not found");
+    return;
+  }
+  if (!t.swizzle.empty())
+    warn(t.where, "`" + attribute + ".swizzle` (\"" + t.swizzle +
+                      "\") has no MuJoCo counterpart; all channels were used");
+  if (t.filter_mode != 1)
+    warn(t.where, "`" + attribute +
+                      ".filter_mode` has no MuJoCo counterpart (textures are filtered linearly, "
+                      "mipmapped); linear filtering was used");
+  if (t.wrap_mode != 0)
+    warn(t.where, "`" + attribute + ".wrap_mode` has no MuJoCo counterpart (textures repeat); it repeats");
+  if (t.offset_u != 0 || t.offset_v != 0)
+    warn(t.where,
+         "`" + attribute + ".offset_u/offset_v` have no MuJoCo counterpart; the texture starts at 0");
+  std::string file = t.file;
+  if (!options_.output_dir.empty())
+    file = fs::path(t.file).lexically_relative(options_.output_dir).generic_string();
+  const std::string texture = name(m.path) + "/" + t.attribute;
+  assets_->add("texture").set("name", texture).set("type", "2d").set("file", file);
+  material.set("texture", texture).set("texrepeat", number(t.scale_u) + " " + number(t.scale_v));
 }
 
 // A mesh given by its vertices (and, for a TriMesh, its triangles) as an inline MJCF mesh asset.

@@ -123,6 +123,7 @@ class Lowering {
 
   // ----------------------------------------------------------------------------------- assets.cpp
   void emit_visual_materials();
+  void emit_texture(Element& material, const sn::VisualMaterial& m, const sn::FileTexture& t);
   std::string vertex_mesh_asset(const sn::Geometry& g);
   std::string mesh_asset(const sn::Geometry& g);
 

@@ -102,7 +102,23 @@ VisualMaterial read_visual_material(AttributeReader& in, fe::ObjectId id) {
   for (const char* map : {"base_color_map", "roughness_map", "metallic_map", "alpha_map",
                           "ambient_occlusion_map", "normal_map"}) {
     const fe::ObjectId texture = in.object(id, map);
-    const fe::ObjectId data = texture == fe::kNoObject ? fe::kNoObject : in.object(texture, "data");
+    if (texture == fe::kNoObject) continue;
+    if (const std::string file = in.string(texture, "path").value_or(""); !file.empty()) {
+      FileTexture t;
+      t.attribute = map;
+      t.file = file;
+      t.scale_u = in.real(texture, "scale_u", 1.0);
+      t.scale_v = in.real(texture, "scale_v", 1.0);
+      t.offset_u = in.real(texture, "offset_u", 0.0);
+      t.offset_v = in.real(texture, "offset_v", 0.0);
+      t.wrap_mode = static_cast<int>(in.real(texture, "wrap_mode", 0.0));
+      t.filter_mode = static_cast<int>(in.real(texture, "filter_mode", 1.0));
+      t.swizzle = in.string(texture, "swizzle").value_or("");
+      t.where = source_of(in.graph(), texture);
+      m.file_textures.push_back(std::move(t));
+      continue;
+    }
+    const fe::ObjectId data = in.object(texture, "data");
     if (data != fe::kNoObject && in.real(data, "width") > 0 && in.real(data, "height") > 0)
       m.inline_textures.push_back({map, source_of(in.graph(), texture)});
   }

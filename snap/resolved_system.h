@@ -90,6 +90,16 @@ struct InlineTexture {
   frontend::SourceRange where;
 };
 
+// A texture map read from an image file (`import @"x.png"`), with its sampling as the model gives it.
+struct FileTexture {
+  std::string attribute;  // base_color_map, roughness_map, ...
+  std::string file;       // absolute path
+  double scale_u = 1, scale_v = 1, offset_u = 0, offset_v = 0;
+  int wrap_mode = 0, filter_mode = 1;  // Visuals.Textures.WrapMode / FilterMode (Repeat, Linear)
+  std::string swizzle;                 // "" when none
+  frontend::SourceRange where;
+};
+
 // Visuals.Materials.Material.
 struct VisualMaterial {
   ObjectRef object;
@@ -97,6 +107,7 @@ struct VisualMaterial {
   std::optional<Eigen::Vector4d> tint;  // base_color_tint r, g, b, a (a component that is not a number: 1)
   std::optional<double> roughness, metallic;
   std::vector<InlineTexture> inline_textures;  // maps that carry pixels with a positive width and height
+  std::vector<FileTexture> file_textures;      // maps read from image files
   frontend::SourceRange where;
 };
 
