@@ -181,6 +181,10 @@ std::string_view to_string(Quantity quantity) {
       return "mate_torque";
     case Quantity::Composite:
       return "composite";
+    case Quantity::Broadcast:
+      return "broadcast";
+    case Quantity::Affine:
+      return "affine";
     case Quantity::Constant:
       return "constant";
   }

@@ -83,6 +83,9 @@ enum class Quantity {
   Composite,   // Robotics RobotInput/RobotOutput: `names` are the OpenPLX paths of its parts, in order; an
                // input takes one value per part (each a scalar input), an output gives its parts' values
                // one after another (Vector)
+  Broadcast,   // Control BroadcastInput: `names` its targets' paths; one value written to each (their type)
+  Affine,      // Control AffineTransform1DInput/Output: `names` {its target or source}; writes
+               // `low` * value + `high` to the target, reads `low` * (the source) + `high` (Real)
   Constant,    // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
 };
 

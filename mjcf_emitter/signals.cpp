@@ -20,7 +20,7 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
       warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + s.type +
                         ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
     }
-    if (!b.input && b.enabled && b.quantity != Quantity::Composite) add_sensor(b);
+    if (!b.input && b.enabled && !s.composite) add_sensor(b);
   }
 }
 
@@ -48,11 +48,31 @@ SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<Si
                       "its part `" + part.path + "` is an " + (part.input ? "input" : "output"));
     const bool scalar =
         part.value == SignalValue::Real || part.value == SignalValue::Bool || part.value == SignalValue::Int;
-    if (s.input && !scalar)
-      return unmapped(std::move(b), "its part `" + part.path + "` takes more than one value");
+    const bool vector_input = s.input && s.composition == sn::Signal::Composition::Vector;
+    if ((vector_input || s.composition == sn::Signal::Composition::Affine) && !scalar)
+      return unmapped(std::move(b), "its part `" + part.path + "` is not one number");
+    if (s.composition == sn::Signal::Composition::Broadcast && !b.names.empty() &&
+        part.value != parts[static_cast<size_t>(s.parts.front())].value)
+      return unmapped(std::move(b), "its targets take different kinds of values");
     b.names.push_back(part.path);
   }
-  b.quantity = Quantity::Composite;
+  switch (s.composition) {
+    case sn::Signal::Composition::Vector:
+      b.quantity = Quantity::Composite;
+      break;
+    case sn::Signal::Composition::Broadcast:
+      if (s.parts.empty()) return unmapped(std::move(b), "it has no targets");
+      b.quantity = Quantity::Broadcast;
+      b.value = parts[static_cast<size_t>(s.parts.front())].value;
+      break;
+    case sn::Signal::Composition::Affine:
+      if (s.parts.size() != 1) return unmapped(std::move(b), "it has no target or source signal");
+      b.quantity = Quantity::Affine;
+      b.value = SignalValue::Real;
+      b.low = s.scale;
+      b.high = s.offset;
+      break;
+  }
   return b;
 }
 

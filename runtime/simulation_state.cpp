@@ -73,8 +73,9 @@ std::string_view type_name(ValueType type) {
 
 std::string describe(const mjcf::SignalBinding& b) {
   if (b.quantity == Quantity::None) return "not mapped: " + b.reason;
-  if (b.quantity == Quantity::Composite) {
-    std::string text = "composite of";
+  if (b.quantity == Quantity::Composite || b.quantity == Quantity::Broadcast ||
+      b.quantity == Quantity::Affine) {
+    std::string text = std::string(to_string(b.quantity)) + " of";
     for (const std::string& name : b.names) text += " " + name;
     return text;
   }
@@ -122,7 +123,9 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
     s.info.mapped = b.quantity != Quantity::None;
     s.info.mujoco = describe(b);
     for (const std::string& name : b.names) {
-      if (b.quantity == Quantity::Composite) break;  // its names are its parts' OpenPLX paths
+      if (b.quantity == Quantity::Composite || b.quantity == Quantity::Broadcast ||
+          b.quantity == Quantity::Affine)
+        break;  // its names are its parts' OpenPLX paths
       const int id = mj_name2id(m, object_type(b.object), name.c_str());
       if (id < 0) {  // the emitter promised it: a mismatch is a bug, so the signal is refused, not misread
         s.info.mapped = false;
@@ -205,7 +208,8 @@ static size_t value_count(ValueType type) {
 // A composite's parts by path, and its size; one with a part that did not resolve is not mapped.
 void SimulationState::resolve_composites() {
   for (ResolvedSignal& s : signals) {
-    if (s.binding.quantity != Quantity::Composite) continue;
+    const Quantity q = s.binding.quantity;
+    if (q != Quantity::Composite && q != Quantity::Broadcast && q != Quantity::Affine) continue;
     s.info.size = 0;
     for (const std::string& path : s.binding.names) {
       auto it = by_name.find(path);
@@ -219,6 +223,7 @@ void SimulationState::resolve_composites() {
       s.parts.push_back(it->second);
       s.info.size += value_count(signals[static_cast<size_t>(it->second)].info.value);
     }
+    if (q != Quantity::Composite && !s.parts.empty()) s.info.size = value_count(s.info.value);
   }
 }
 
@@ -406,6 +411,15 @@ void SimulationState::compute_post_step() {
 void SimulationState::write(int index, const double* values, int count, ValueType given) {
   ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
+  if (b.quantity == Quantity::Broadcast) {  // the same value to every target, each checking it
+    for (int p : s.parts) write(p, values, count, given);
+    return;
+  }
+  if (b.quantity == Quantity::Affine && given == ValueType::Real && count == 1 && !s.parts.empty()) {
+    const double value = b.low * values[0] + b.high;
+    write(s.parts.front(), &value, 1, ValueType::Real);
+    return;
+  }
   if (b.quantity == Quantity::Composite && given == ValueType::Vector) {
     if (static_cast<size_t>(count) != s.parts.size()) {
       throw SignalError("input `" + s.info.name + "` takes " + std::to_string(s.parts.size()) +
@@ -545,6 +559,11 @@ Eigen::Vector3d SimulationState::carried_angular(int b) const {
 void SimulationState::read(int index, double* out, int count, ValueType wanted) const {
   const ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
+  if (b.quantity == Quantity::Affine && wanted == ValueType::Real && !s.parts.empty() && !b.input) {
+    read(s.parts.front(), out, 1, ValueType::Real);
+    out[0] = b.low * out[0] + b.high;
+    return;
+  }
   if (b.quantity == Quantity::Composite && wanted == ValueType::Vector) {
     int at = 0;
     for (int p : s.parts) {

@@ -49,6 +49,9 @@ class SystemBuilder {
     converter_ = program.loaded_model("DriveTrain.EmpiricalTorqueConverter");
     mean_value_engine_ = program.loaded_model("DriveTrain.MeanValueEngine");
     empirical_engine_ = program.loaded_model("DriveTrain.EmpiricalEngine");
+    broadcast_ = program.loaded_model("Control.Virtual.BroadcastInput");
+    affine_input_ = program.loaded_model("Control.Virtual.AffineTransform1DInput");
+    affine_output_ = program.loaded_model("Control.Virtual.AffineTransform1DOutput");
     mimic_ = program.loaded_model("Urdf.Mimic");
     joint_properties_ = program.loaded_model("Urdf.JointProperties");
     package_path_ = program.loaded_model("Urdf.PackagePath");
@@ -504,17 +507,27 @@ class SystemBuilder {
     signal.input = is(obj, input_);
     signal.path = ev_.graph().path(id);
     signal.type = obj.type->qualified;
-    // The torque converter's own signal models name it `torque_converter`, not `source`.
-    const fe::ObjectId source = object(id, "source");
+    // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
+    // `source` is the signal it transforms.
+    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : object(id, "source");
     signal_sources_.push_back(source != fe::kNoObject ? source : object(id, "torque_converter"));
     signal.where = where_of(id);
     if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
       signal.enabled = e->bool_value;
     std::vector<fe::ObjectId> parts;
-    for (const char* list : {"targets", "joint_sources", "object_sources"}) {
+    for (const char* list : {"targets", "joint_sources", "object_sources", "sources"}) {
       if (!obj.has(list)) continue;
       signal.composite = true;
       for (fe::ObjectId part : in_.objects(id, list)) parts.push_back(part);
+    }
+    using Composition = Signal::Composition;
+    if (is(obj, broadcast_)) signal.composition = Composition::Broadcast;
+    if (is(obj, affine_input_) || is(obj, affine_output_)) {
+      signal.composite = true;
+      signal.composition = Composition::Affine;
+      signal.scale = real(id, "scale", 1.0);
+      signal.offset = real(id, "offset", 0.0);
+      parts = {object(id, signal.input ? "target" : "source")};
     }
     if (obj.has("sensors")) signal.sensors = in_.objects(id, "sensors").size();
     composite_parts_.push_back(std::move(parts));
@@ -796,6 +809,9 @@ class SystemBuilder {
   fe::ModelInfo* converter_ = nullptr;
   fe::ModelInfo* mean_value_engine_ = nullptr;
   fe::ModelInfo* empirical_engine_ = nullptr;
+  fe::ModelInfo* broadcast_ = nullptr;
+  fe::ModelInfo* affine_input_ = nullptr;
+  fe::ModelInfo* affine_output_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;
   fe::ModelInfo* differential_ = nullptr;
   fe::ModelInfo* drive_actuator_ = nullptr;

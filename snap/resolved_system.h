@@ -161,9 +161,14 @@ struct Signal {
   int source = -1;  // index into the list of its kind (interactions, mates, nodes, shafts, connectors)
   std::string source_path;  // the source's instance path (Other sources)
   bool enabled = true;
-  // A composite (Robotics.Signals.RobotInput's targets, RobotOutput's joint and object sources): its parts in
-  // order, as indices into ResolvedSystem::signals (-1: a part that is no signal of the tree).
+  // A composite (Robotics.Signals.RobotInput's targets, RobotOutput's joint and object sources, Control's
+  // virtual signals): its parts in order, as indices into ResolvedSystem::signals (-1: a part that is no
+  // signal of the tree). Vector: one value per part; Broadcast: one value to every part; Affine: one part,
+  // scale * value + offset.
+  enum class Composition { Vector, Broadcast, Affine };
   bool composite = false;
+  Composition composition = Composition::Vector;
+  double scale = 1, offset = 0;
   std::vector<int> parts;
   size_t sensors = 0;  // RobotOutput sensors (not mapped)
   frontend::SourceRange where;

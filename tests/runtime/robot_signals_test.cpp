@@ -58,3 +58,46 @@ TEST(RobotSignals, OneInputVectorDrivesAndOneOutputVectorReadsTheArm) {
 }
 
 }  // namespace
+
+namespace {
+
+// Control's virtual signals on the arm: a BroadcastInput sends one torque to both joints, an
+// AffineTransform1DInput doubles a torque, an AffineTransform1DOutput reads the shoulder in degrees, a
+// GroupOutput both angles.
+TEST(ControlSignals, BroadcastAffineAndGroupRouteToTheirSignals) {
+  const openplx::testing::ScratchDir dir;
+  const auto file = dir / "arm.openplx";
+  std::ifstream in(std::string(OPENPLX_SAMPLES_DIR) + "/two_joint_arm.openplx");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::ofstream(file) << text.str() +
+                             "    both is Control.Virtual.BroadcastInput:\n"
+                             "        targets: [shoulder_torque, elbow_torque]\n"
+                             "    doubled is Control.Virtual.AffineTransform1DInput:\n"
+                             "        target: shoulder_torque\n"
+                             "        scale: 2\n"
+                             "        offset: 0.5\n"
+                             "    shoulder_degrees is Control.Virtual.AffineTransform1DOutput:\n"
+                             "        source: shoulder_angle\n"
+                             "        scale: 57.29577951308232\n"
+                             "    angles is Control.Virtual.GroupOutput:\n"
+                             "        sources: [shoulder_angle, elbow_angle]\n";
+  rt::Simulation sim = rt::Simulation::load(file.string());
+  EXPECT_TRUE(sim.warnings().empty()) << sim.warnings().front();
+  sim.input("both").set(1.5);
+  EXPECT_EQ(sim.data()->ctrl[0], 1.5);
+  EXPECT_EQ(sim.data()->ctrl[1], 1.5);
+  sim.input("doubled").set(1.0);
+  EXPECT_EQ(sim.data()->ctrl[0], 2.5);  // 2 * 1 + 0.5 to the shoulder only
+  EXPECT_EQ(sim.data()->ctrl[1], 1.5);
+  sim.advance(0.2);
+  const double shoulder = sim.output("shoulder_angle").real();
+  EXPECT_NE(shoulder, 0.0);
+  EXPECT_DOUBLE_EQ(sim.output("shoulder_degrees").real(), 57.29577951308232 * shoulder);
+  const Eigen::VectorXd angles = sim.output("angles").vector();
+  ASSERT_EQ(angles.size(), 2);
+  EXPECT_EQ(angles[0], shoulder);
+  EXPECT_EQ(angles[1], sim.output("elbow_angle").real());
+}
+
+}  // namespace
