@@ -33,6 +33,7 @@ Emitted Lowering::run() {
   emit_world_geoms(world);
   emit_bodies(world);
   emit_loop_closures(root);
+  emit_distance_mates(root);
   emit_drivetrain(root);
   emit_joint_couplings(root);
   emit_contact_pairs(root);

@@ -175,6 +175,51 @@ void Lowering::finish_with_draft(Element& root) {
   }
 }
 
+// A Distance mate holds its connectors target_distance apart: a spatial tendon between sites at the two
+// connectors, held by a tendon equality at target - (its length as assembled), since MuJoCo measures tendon
+// equalities from the initial configuration. A target of zero with coincident connectors is a `connect`
+// (a tendon of length zero has no direction).
+void Lowering::emit_distance_mates(Element& root) {
+  Element& equality = *root.child("equality");
+  for (size_t m = 0; m < view_.mates.size(); ++m) {
+    const sn::Mate& mate = view_.mates[m];
+    if (mate.type != sn::MateType::Distance || mate.connectors[0] < 0 || mate.connectors[1] < 0) continue;
+    const int a = vertex_of_connector(mate.connectors[0]), b = vertex_of_connector(mate.connectors[1]);
+    if (a == b) {
+      warn(mate.where, "`" + mate.path + "` joins two connectors of one body; it was left out");
+      continue;
+    }
+    const double assembled = (snap_.connector_world[mate.connectors[1]].position -
+                              snap_.connector_world[mate.connectors[0]].position)
+                                 .norm();
+    const std::string element = name(mate.path);
+    if (assembled < 1e-9 && std::abs(mate.target_distance) < 1e-9) {
+      const sn::Transform local = view_.connectors[mate.connectors[0]].local;
+      equality.add("connect")
+          .set("name", element)
+          .set("body1", mujoco_body(a))
+          .set("body2", mujoco_body(b))
+          .set("anchor", a >= 0 ? local.position : snap_.connector_world[mate.connectors[0]].position)
+          .set("active", mate.enabled ? "true" : "false");
+      equalities_of_mate_[static_cast<int>(m)] = {element};
+      continue;
+    }
+    Element* tendons = root.child("tendon");
+    if (!tendons) tendons = &root.add("tendon");
+    Element& tendon = tendons->add("spatial");
+    tendon.set("name", element);
+    tendon.add("site").set("site", site_for(mate.connectors[0]));
+    tendon.add("site").set("site", site_for(mate.connectors[1]));
+    equality.add("tendon")
+        .set("name", element)
+        .set("tendon1", element)
+        .set("polycoef", number(mate.target_distance - assembled) + " 0 0 0 0")
+        .set("active", mate.enabled ? "true" : "false");
+    equalities_of_mate_[static_cast<int>(m)] = {element};
+    distance_mates_[static_cast<int>(m)] = element;
+  }
+}
+
 // A drivetrain as MuJoCo joints and constraints: every shaft is a rotor body spinning about z at the world
 // origin (no geometry, its inertia about the axis), hinge/prismatic actuators tie a shaft's angle to the
 // mate's joint and gears tie two shafts with joint equalities (MuJoCo measures both from their initial

@@ -114,6 +114,7 @@ class Lowering {
 
   // ------------------------------------------------------------------------------- equalities.cpp
   void emit_loop_closures(Element& root);
+  void emit_distance_mates(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
   void finish_with_draft(Element& root);
   void stiffen_equalities(Element& root);
@@ -253,6 +254,7 @@ class Lowering {
   std::map<int, std::vector<std::string>> equalities_of_mate_;  // loop mate -> its equality names
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
+  std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
 };
 
 }  // namespace openplx::mjcf

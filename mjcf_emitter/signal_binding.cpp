@@ -145,6 +145,10 @@ std::string_view to_string(Quantity quantity) {
       return "tendon_velocity";
     case Quantity::TendonSpringForce:
       return "tendon_spring_force";
+    case Quantity::TendonLength:
+      return "tendon_length";
+    case Quantity::DistanceTarget:
+      return "distance_target";
     case Quantity::GearRatio:
       return "gear_ratio";
     case Quantity::GearSelect:

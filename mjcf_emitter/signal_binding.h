@@ -51,6 +51,8 @@ enum class Quantity {
   GearRatio,  // Equality (a gear's joint equality, joint1 = output, joint2 = input): ratio = 1 / polycoef[1];
               // writing it re-anchors polycoef[0] so the shafts keep their positions (Real, readable; 0
               // while the equality is inactive, a gearbox in neutral)
+  DistanceTarget,  // Equality (a Distance mate's tendon equality): the held length; writing it sets
+                   // polycoef[0] = value - the tendon's initial length (Real, readable)
   GearSelect,  // Equality (a gearbox's): the gear number (Int, readable): n > 0 forward gear n, n < 0 reverse
                // gear -n, 0 neutral (inactive). `initial_vector` = forward ratios then reverse ratios, `low`
                // = how many are forward, `high` = 1 when it has a neutral gear, `initial` = the first gear.
@@ -64,6 +66,7 @@ enum class Quantity {
   JointLimitForce,    // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
   EqualityForce,      // Equality: the force of its constraint row (efc type mjCNSTR_EQUALITY) on joint1
   TendonVelocity,     // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
+  TendonLength,       // Tendon: d->ten_length (a Distance mate's distance)
   TendonSpringForce,  // Tendon (a flexible or viscous gear): its passive force on joint1's side,
                       // -(stiffness (length - lengthspring) + damping velocity)
   BodyPosition,       // Body: d->xpos (the body frame's origin, world)

@@ -238,6 +238,19 @@ SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, in
 
 SignalBinding Lowering::bind_mate(SignalBinding b, std::string_view stem, int m) {
   const sn::Mate& mate = view_.mates[m];
+  if (auto distance = distance_mates_.find(m);
+      distance != distance_mates_.end() && stem != "EnableInteraction" && stem != "InteractionEnabled") {
+    if (stem == "Position1D" && b.path.find(".target_distance_") != std::string::npos) {
+      b = mapped(std::move(b), Quantity::DistanceTarget, MjObject::Equality, distance->second);
+      b.initial = mate.target_distance;
+      return b;
+    }
+    if (stem == "Position1D" && !b.input)
+      return mapped(std::move(b), Quantity::TendonLength, MjObject::Tendon, distance->second);
+    if (stem == "Force1D" && !b.input)  // the equality row's force along the tendon
+      return mapped(std::move(b), Quantity::EqualityForce, MjObject::Equality, distance->second);
+    return unmapped(std::move(b), "`" + mate.path + "` is a distance constraint without this signal");
+  }
   const bool tree = tree_mates_.count(m) > 0;
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {
     if (auto e = equalities_of_mate_.find(m); e != equalities_of_mate_.end()) {

@@ -52,6 +52,7 @@ void Lowering::choose_tree() {
   for (size_t m = 0; m < view_.mates.size(); ++m) {
     const sn::Mate& mate = view_.mates[m];
     if (mate.connectors[0] < 0 || mate.connectors[1] < 0) continue;
+    if (mate.type == sn::MateType::Distance) continue;  // a tendon constraint (emit_distance_mates)
     if (!joint_mapped(mate)) {
       warn(mate.where, "`" + mate.path + "` is a " + sn::mate_type_name(mate.type) +
                            " mate, which has no MuJoCo 2.2.2 joint here; it was left out");

@@ -483,6 +483,10 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
     case Quantity::GearSelect:
       select_gear(s, static_cast<int>(values[0]));
       return;
+    case Quantity::DistanceTarget:
+      m->eq_data[id * mjNEQDATA] = values[0] - m->tendon_length0[m->eq_obj1id[id]];
+      stale = true;  // equality rows are built in mj_step1
+      return;
     case Quantity::GearRatio: {
       if (values[0] == 0) throw SignalError("input `" + s.info.name + "` got a zero gear ratio");
       reanchor_gear(id, values[0]);
@@ -635,6 +639,12 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       return;
     case Quantity::GearSelect:
       out[0] = gearboxes.at(id).gear;
+      return;
+    case Quantity::DistanceTarget:
+      out[0] = m->eq_data[id * mjNEQDATA] + m->tendon_length0[m->eq_obj1id[id]];
+      return;
+    case Quantity::TendonLength:
+      out[0] = d->ten_length[id];
       return;
     case Quantity::TendonSpringForce:
       out[0] = -(m->tendon_stiffness[id] * (d->ten_length[id] - tendon_rest_length(m, d, id)) +

@@ -735,6 +735,11 @@ class SystemBuilder {
     real("initial_position", mate.initial_position);
     real("initial_normal_angle", mate.initial_normal_angle);
     real("initial_cross_angle", mate.initial_cross_angle);
+    if (mate.type == MateType::Distance) {  // SNAP places it at its initial distance along main_axis
+      real("initial_distance", mate.initial_position);
+      mate.target_distance = mate.initial_position;
+      real("target_distance", mate.target_distance);
+    }
     if (const fe::Value* snap = ev_.value(id, "enable_snap"); snap && snap->kind == fe::Value::Kind::Bool) {
       mate.enable_snap = snap->bool_value;
     }
@@ -859,6 +864,9 @@ Transform joint_offset(const Mate& mate) {
       break;
     case MateType::Cylindrical:
       j.rotation = natives::quat_angle_axis(mate.initial_angle, z);
+      j.position = mate.initial_position * z;
+      break;
+    case MateType::Distance:
       j.position = mate.initial_position * z;
       break;
     default:

@@ -207,7 +207,8 @@ struct Mate {
   std::string path;
   int connectors[2] = {-1, -1};  // indices into ResolvedSystem::connectors; -1 when missing
   double initial_angle = 0.0;
-  double initial_position = 0.0;
+  double initial_position = 0.0;  // Distance: initial_distance
+  double target_distance = 0.0;   // Distance
   double initial_normal_angle = 0.0;
   double initial_cross_angle = 0.0;
   bool enable_snap = true;
@@ -364,7 +365,7 @@ struct ResolvedSystem {
 
 // The offset a mate's free degrees of freedom take at rest: connectors[1]'s frame relative to
 // connectors[0]'s. Hinge: rotation by initial_angle about main_axis (right-handed); Prismatic: translation by
-// initial_position along it; Cylindrical: both; others: none.
+// initial_position along it; Cylindrical: both; Distance: translation by initial_distance; others: none.
 Transform joint_offset(const Mate& mate);
 
 std::string mate_type_name(MateType type);

@@ -40,7 +40,8 @@ fs::path write_release(const fs::path& root, const std::string& version, const s
         line = "    version: \"" + version + "\"";
       } else if (line.find("dependencies:") != std::string::npos) {
         line = std::regex_replace(line, std::regex("\"Math\""), "\"Math==" + math_pin + "\"");
-        line = std::regex_replace(line, std::regex("\"(Physics|Physics1D|Physics3D)\""), "\"$1==" + version + "\"");
+        line = std::regex_replace(line, std::regex("\"(Physics|Physics1D|Physics3D)\""),
+                                  "\"$1==" + version + "\"");
       }
       text += line + "\n";
     }
@@ -49,8 +50,11 @@ fs::path write_release(const fs::path& root, const std::string& version, const s
   fs::create_directories(release / "Rigs");
   std::ofstream(release / "Rigs" / "config.openplx") << "config is BundleConfig:\n"
                                                         "    name: \"Rigs\"\n"
-                                                        "    version: \"" + version + "\"\n"
-                                                        "    dependencies: [\"Physics3D==" + version + "\"]\n";
+                                                        "    version: \"" +
+                                                            version +
+                                                            "\"\n"
+                                                            "    dependencies: [\"Physics3D==" +
+                                                            version + "\"]\n";
   // Written as 0.20 releases write models.
   std::ofstream(release / "Rigs" / "Rigs.openplx")
       << "Link is Physics3D.Bodies.RigidBody:\n"
@@ -88,13 +92,16 @@ int convert(const std::vector<std::string>& args, std::string* out = nullptr, st
 TEST(BundleRelease, CorpusModelsConvertAgainstAPinnedReleaseAlone) {
   const openplx::testing::ScratchDir dir;
   const fs::path release = write_release(dir.path(), "0.20.2", "0.20.2");
-  for (const char* name : {"LinearRangeTest", "simpler_inverted_pendulum", "signal_test", "differential_test"}) {
+  for (const char* name :
+       {"LinearRangeTest", "simpler_inverted_pendulum", "signal_test", "differential_test"}) {
     SCOPED_TRACE(name);
-    const std::string model = (fs::path(OPENPLX_CORPUS_DIR) / "agxunity" / (std::string(name) + ".openplx")).string();
+    const std::string model =
+        (fs::path(OPENPLX_CORPUS_DIR) / "agxunity" / (std::string(name) + ".openplx")).string();
     const std::string theirs = (dir / (std::string(name) + "_release.xml")).string();
     const std::string ours = (dir / (std::string(name) + "_ours.xml")).string();
     std::string err;
-    ASSERT_EQ(convert({model, "--no-default-bundles", "-B", release.string(), "--check", "-o", theirs}, nullptr, &err),
+    ASSERT_EQ(convert({model, "--no-default-bundles", "-B", release.string(), "--check", "-o", theirs},
+                      nullptr, &err),
               0)
         << err;
     ASSERT_EQ(convert({model, "-o", ours}, nullptr, &err), 0) << err;
@@ -111,7 +118,9 @@ TEST(BundleRelease, ReleaseConstructsEvaluateAndConvert) {
                           "        main_axis: Math.Vec3.Y_AXIS()\n"
                           "    anchor: world\n";
   std::string values, err;
-  ASSERT_EQ(convert({model.string(), "--no-default-bundles", "-B", release.string(), "--dump=values"}, &values, &err), 0)
+  ASSERT_EQ(convert({model.string(), "--no-default-bundles", "-B", release.string(), "--dump=values"},
+                    &values, &err),
+            0)
       << err;
   EXPECT_NE(values.find("joint.connectors = [-> first.end, -> second.start]"), std::string::npos) << values;
   EXPECT_NE(values.find("anchor = -> world"), std::string::npos) << values;
@@ -131,8 +140,8 @@ TEST(BundleRelease, WithoutDefaultBundlesOnlyTheReleaseIsSeen) {
   EXPECT_NE(err.find("Unknown name Physics3D"), std::string::npos) << err;
   // A pin the release does not meet is reported where the config is used.
   const fs::path release = write_release(dir.path(), "0.20.2", "0.19.0");
-  EXPECT_NE(convert({model, "--no-default-bundles", "-B", release.string(), "-o", (dir / "y.xml").string()}, nullptr,
-                    &err),
+  EXPECT_NE(convert({model, "--no-default-bundles", "-B", release.string(), "-o", (dir / "y.xml").string()},
+                    nullptr, &err),
             0);
   EXPECT_NE(err.find("requires Math@0.19.0 but found Math@0.20.2"), std::string::npos) << err;
 }

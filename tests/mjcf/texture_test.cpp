@@ -1,7 +1,7 @@
 // Image textures: `import @"x.png" as T` is a Visuals texture reading the file; a material's base colour map
-// becomes a MuJoCo 2-D <texture> the material repeats scale_u x scale_v times, loaded by MuJoCo at the image's
-// size. What MuJoCo lacks (other maps, swizzles, filter and wrap modes) is a warning at the user's line, never
-// an abort; JPEG (which MuJoCo 2.2.2 cannot read) is an error that says so.
+// becomes a MuJoCo 2-D <texture> the material repeats scale_u x scale_v times, loaded by MuJoCo at the
+// image's size. What MuJoCo lacks (other maps, swizzles, filter and wrap modes) is a warning at the user's
+// line, never an abort; JPEG (which MuJoCo 2.2.2 cannot read) is an error that says so.
 #include <mujoco/mujoco.h>
 
 #include <gtest/gtest.h>
@@ -17,7 +17,8 @@ namespace {
 
 // A 4 x 2 RGBA PNG (red), written by hand: signature, IHDR, one zlib IDAT, IEND.
 const char kPngHex[] =
-    "89504e470d0a1a0a0000000d49484452000000040000000208060000007fa87d630000001249444154789c63f8cfc0f01f1933a00b"
+    "89504e470d0a1a0a0000000d49484452000000040000000208060000007fa87d630000001249444154789c63f8cfc0f01f1933a0"
+    "0b"
     "00000f210ff10437c69f0000000049454e44ae426082";
 
 void write_png(const std::string& path) {
@@ -52,7 +53,8 @@ Converted convert(const openplx::testing::ScratchDir& dir, const std::string& te
   std::ofstream(dir / "scene.openplx") << text;
   std::ostringstream out, errors;
   Converted c;
-  c.status = openplx::cli::run({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string()}, out, errors);
+  c.status =
+      openplx::cli::run({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string()}, out, errors);
   c.errors = errors.str();
   c.xml = (dir / "scene.xml").string();
   return c;
@@ -91,7 +93,7 @@ TEST(Textures, WhatMuJoCoLacksIsWarnedAtTheUsersLine) {
                                          "        metallic_map: Red\n"));
   ASSERT_EQ(c.status, 0) << c.errors;
   const std::string file = (dir / "scene.openplx").string();
-  for (const std::string expected :
+  for (const std::string& expected :
        {file + ":2:1: warning: `paint.base_color_map.swizzle` (\"r\") has no MuJoCo counterpart",
         file + ":2:1: warning: `paint.base_color_map.filter_mode` has no MuJoCo counterpart",
         file + ":2:1: warning: `paint.base_color_map.wrap_mode` has no MuJoCo counterpart",
@@ -110,7 +112,9 @@ TEST(Textures, JpegIsAnErrorThatSaysWhy) {
   std::ofstream(dir / "photo.jpg") << "not really a jpeg";
   std::ofstream(dir / "scene.openplx") << "import @\"photo.jpg\" as Photo\nScene is Physics3D.System\n";
   std::ostringstream out, errors;
-  EXPECT_NE(openplx::cli::run({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string()}, out, errors), 0);
+  EXPECT_NE(
+      openplx::cli::run({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string()}, out, errors),
+      0);
   EXPECT_NE(errors.str().find("MuJoCo 2.2.2 reads PNG textures only"), std::string::npos) << errors.str();
   EXPECT_FALSE(std::ifstream(dir / "scene.xml").good());  // no partial output
 }
