@@ -1054,9 +1054,13 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
   ObjectId object = make_free_object(model);
   if (e.operands.empty()) return Value::of_object(object);
   std::vector<uint32_t> fields;
+  // Fields in declaration order: primitive values, and references to instances made elsewhere
+  // (`{Sensors.Signals.TriaxialOutputField.X_F64, logic.accelerometer_logic}`).
   for (uint32_t i = 0; i < graph_.at(object).slots.size(); ++i) {
     const Slot& slot = graph_.at(object).slots[i];
-    if (slot.type->is_primitive() && !slot.type->is_array && slot.type->kind != TypeKind::Error)
+    const bool reference = slot.declaration && slot.declaration->member->is_reference;
+    if ((slot.type->is_primitive() || reference) && !slot.type->is_array &&
+        slot.type->kind != TypeKind::Error)
       fields.push_back(i);
   }
   if (e.operands.size() != fields.size()) {

@@ -173,6 +173,7 @@ class Lowering {
   // ---------------------------------------------------------------------------------- signals.cpp
   void bind_signals(Element& root, std::vector<SignalBinding>& out);
   SignalBinding bind(const sn::Signal& s);
+  SignalBinding bind_imu(const sn::Signal& s);
   SignalBinding bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts);
   SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
   SignalBinding bind_enabled(SignalBinding b, int k);
@@ -254,6 +255,7 @@ class Lowering {
   std::map<int, std::vector<std::string>> equalities_of_mate_;  // loop mate -> its equality names
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
+  std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
 };
 

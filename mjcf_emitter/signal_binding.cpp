@@ -103,6 +103,8 @@ std::string_view to_string(MjObject object) {
       return "equality";
     case MjObject::Tendon:
       return "tendon";
+    case MjObject::Sensor:
+      return "sensor";
   }
   return "none";
 }
@@ -185,6 +187,8 @@ std::string_view to_string(Quantity quantity) {
       return "mate_torque";
     case Quantity::Composite:
       return "composite";
+    case Quantity::SensorFields:
+      return "sensor_fields";
     case Quantity::Broadcast:
       return "broadcast";
     case Quantity::Affine:

@@ -15,7 +15,7 @@ namespace openplx::mjcf {
 enum class SignalValue { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a composite's values
 
 // The MuJoCo element type a binding's names refer to (an mjtObj).
-enum class MjObject { None, Actuator, Joint, Body, Site, Equality, Tendon };
+enum class MjObject { None, Actuator, Joint, Body, Site, Equality, Tendon, Sensor };
 
 // A velocity motor is a tendon whose friction loss holds the motor joint to a reference turning at the
 // target (velocity_motors.cpp); when its effort band is not centred on zero, an actuator of this name adds
@@ -78,18 +78,20 @@ enum class Quantity {
   SiteRPY,                 // Site: orientation as roll, pitch, yaw
   SiteLinearVelocity,      // Site: world linear velocity of the site origin
   SiteAngularVelocity,     // Site: world angular velocity
-  MateForce,   // Site at the MuJoCo child's connector of a tree mate: the force connectors[0]'s side
-               // exerts on connectors[1]'s side, world axes. MuJoCo gives the parent's force on the
-               // child subtree (the `force` sensor, site axes); `sign` is -1 when the child holds
-               // connectors[0]
-  MateTorque,  // the same, torque about the connector origin
-  Composite,   // Robotics RobotInput/RobotOutput: `names` are the OpenPLX paths of its parts, in order; an
-               // input takes one value per part (each a scalar input), an output gives its parts' values
-               // one after another (Vector)
-  Broadcast,   // Control BroadcastInput: `names` its targets' paths; one value written to each (their type)
-  Affine,      // Control AffineTransform1DInput/Output: `names` {its target or source}; writes
-               // `low` * value + `high` to the target, reads `low` * (the source) + `high` (Real)
-  Constant,    // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
+  MateForce,     // Site at the MuJoCo child's connector of a tree mate: the force connectors[0]'s side
+                 // exerts on connectors[1]'s side, world axes. MuJoCo gives the parent's force on the
+                 // child subtree (the `force` sensor, site axes); `sign` is -1 when the child holds
+                 // connectors[0]
+  MateTorque,    // the same, torque about the connector origin
+  Composite,     // Robotics RobotInput/RobotOutput: `names` are the OpenPLX paths of its parts, in order; an
+                 // input takes one value per part (each a scalar input), an output gives its parts' values
+                 // one after another (Vector)
+  SensorFields,  // Sensor (an IMU output's accelerometer/gyro/magnetometer sensors, one name per field):
+                 // value k = sensordata[adr(names[k]) + initial_vector[k]], the field's axis (Vector)
+  Broadcast,     // Control BroadcastInput: `names` its targets' paths; one value written to each (their type)
+  Affine,        // Control AffineTransform1DInput/Output: `names` {its target or source}; writes
+                 // `low` * value + `high` to the target, reads `low` * (the source) + `high` (Real)
+  Constant,      // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
 };
 
 struct SignalBinding {

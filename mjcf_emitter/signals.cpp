@@ -8,7 +8,8 @@ namespace openplx::mjcf {
 // has one. Outputs without a sensor (controls, ranges, constants) are computed by the runtime.
 void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   sensors_ = &root.add("sensor");
-  for (const sn::Signal& s : view_.signals) out.push_back(s.composite ? SignalBinding{} : bind(s));
+  for (const sn::Signal& s : view_.signals)
+    out.push_back(s.composite ? SignalBinding{} : s.imu ? bind_imu(s) : bind(s));
   // Composites after their parts.
   for (size_t k = 0; k < view_.signals.size(); ++k) {
     if (view_.signals[k].composite) out[k] = bind_composite(view_.signals[k], out);
@@ -20,8 +21,42 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
       warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + s.type +
                         ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
     }
-    if (!b.input && b.enabled && !s.composite) add_sensor(b);
+    if (!b.input && b.enabled && !s.composite && !s.imu) add_sensor(b);
   }
+}
+
+// An IMU output: each field an axis of an accelerometer, gyroscope or magnetometer, which become MuJoCo's
+// sensors of those kinds at a site on the sensor's connector (its axes: x normal, y cross, z main axis). An
+// accelerometer reads proper acceleration (gravity included), as a real one does.
+SignalBinding Lowering::bind_imu(const sn::Signal& s) {
+  SignalBinding b;
+  b.path = s.path;
+  b.type = s.type;
+  b.enabled = s.enabled;
+  b.value = SignalValue::Vector;
+  using Kind = sn::Signal::SensorField::Kind;
+  for (const sn::Signal::SensorField& f : s.sensor_fields) {
+    if (f.kind == Kind::Unknown || f.connector < 0 || f.axis < 0 || f.axis > 2) {
+      return unmapped(std::move(b), f.kind == Kind::Unknown ? "a field's sensor is not an accelerometer, "
+                                                              "gyroscope or magnetometer"
+                                    : f.connector < 0 ? "a field's sensor has no mate_connector_attachment"
+                                                      : "a field is not X, Y or Z");
+    }
+    const std::string sensor = name(f.sensor_path);
+    if (imu_sensors_.insert(sensor).second) {
+      sensors_
+          ->add(f.kind == Kind::Accelerometer ? "accelerometer"
+                : f.kind == Kind::Gyroscope   ? "gyro"
+                                              : "magnetometer")
+          .set("name", sensor)
+          .set("site", site_for(f.connector));
+    }
+    b.names.push_back(sensor);
+    b.initial_vector.push_back(f.axis);
+  }
+  b.quantity = Quantity::SensorFields;
+  b.object = MjObject::Sensor;
+  return b;
 }
 
 // A RobotInput or RobotOutput: its parts' paths in order. An input's parts must be scalar inputs (one value

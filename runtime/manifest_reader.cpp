@@ -51,7 +51,7 @@ mjcf::SignalBinding binding(const json& j) {
   b.unit = j.at("unit").get<std::string>();
   b.enabled = j.at("enabled").get<bool>();
   b.quantity = parse_enum(j.at("quantity").get<std::string>(), Quantity::Constant, "quantity");
-  b.object = parse_enum(j.at("object").get<std::string>(), MjObject::Tendon, "object");
+  b.object = parse_enum(j.at("object").get<std::string>(), MjObject::Sensor, "object");
   b.names = j.at("names").get<std::vector<std::string>>();
   b.sensor = j.at("sensor").get<std::string>();
   b.sign = real(j.at("sign"));

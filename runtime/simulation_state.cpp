@@ -29,6 +29,8 @@ mjtObj object_type(MjObject object) {
       return mjOBJ_EQUALITY;
     case MjObject::Tendon:
       return mjOBJ_TENDON;
+    case MjObject::Sensor:
+      return mjOBJ_SENSOR;
     case MjObject::None:
       break;
   }
@@ -224,6 +226,9 @@ void SimulationState::resolve_composites() {
       s.info.size += value_count(signals[static_cast<size_t>(it->second)].info.value);
     }
     if (q != Quantity::Composite && !s.parts.empty()) s.info.size = value_count(s.info.value);
+  }
+  for (ResolvedSignal& s : signals) {
+    if (s.binding.quantity == Quantity::SensorFields) s.info.size = s.ids.size();
   }
 }
 
@@ -645,6 +650,10 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       return;
     case Quantity::TendonLength:
       out[0] = d->ten_length[id];
+      return;
+    case Quantity::SensorFields:
+      for (size_t k = 0; k < s.ids.size() && k < static_cast<size_t>(count); ++k)
+        out[k] = d->sensordata[m->sensor_adr[s.ids[k]] + static_cast<int>(b.initial_vector[k])];
       return;
     case Quantity::TendonSpringForce:
       out[0] = -(m->tendon_stiffness[id] * (d->ten_length[id] - tendon_rest_length(m, d, id)) +

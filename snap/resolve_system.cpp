@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <map>
+#include <tuple>
 #include <unordered_map>
 
 #include "frontend/urdf/package_uri.h"
@@ -50,6 +51,10 @@ class SystemBuilder {
     mean_value_engine_ = program.loaded_model("DriveTrain.MeanValueEngine");
     empirical_engine_ = program.loaded_model("DriveTrain.EmpiricalEngine");
     broadcast_ = program.loaded_model("Control.Virtual.BroadcastInput");
+    imu_output_ = program.loaded_model("Sensors.Signals.IMUOutput");
+    accelerometer_ = program.loaded_model("Sensors.AccelerometerLogic");
+    gyroscope_ = program.loaded_model("Sensors.GyroscopeLogic");
+    magnetometer_ = program.loaded_model("Sensors.MagnetometerLogic");
     affine_input_ = program.loaded_model("Control.Virtual.AffineTransform1DInput");
     affine_output_ = program.loaded_model("Control.Virtual.AffineTransform1DOutput");
     mimic_ = program.loaded_model("Urdf.Mimic");
@@ -132,6 +137,7 @@ class SystemBuilder {
     }
     for (size_t k = 0; k < view_.signals.size(); ++k) resolve_source(view_.signals[k], signal_sources_[k]);
     resolve_composites();
+    resolve_sensor_attachments();
     view_.gravity = read_gravity(in_, view_.root >= 0 ? view_.nodes[view_.root].object : fe::kNoObject);
     return std::move(view_);
   }
@@ -530,6 +536,31 @@ class SystemBuilder {
       parts = {object(id, signal.input ? "target" : "source")};
     }
     if (obj.has("sensors")) signal.sensors = in_.objects(id, "sensors").size();
+    if (is(obj, imu_output_)) {
+      signal.imu = true;
+      // A sensor without an attachment of its own sits where the IMU is attached.
+      const fe::ObjectId imu = object(id, "source");
+      const fe::ObjectId imu_attachment =
+          imu == fe::kNoObject ? fe::kNoObject : object(imu, "mate_connector_attachment");
+      for (fe::ObjectId field : in_.objects(id, "fields")) {
+        Signal::SensorField f;
+        f.axis = static_cast<int>(real(field, "field", 1.0)) - 1;
+        const fe::ObjectId sensor = object(field, "sensor");
+        if (sensor != fe::kNoObject) {
+          const fe::Object& logic = ev_.graph().at(sensor);
+          using Kind = Signal::SensorField::Kind;
+          f.kind = is(logic, accelerometer_)  ? Kind::Accelerometer
+                   : is(logic, gyroscope_)    ? Kind::Gyroscope
+                   : is(logic, magnetometer_) ? Kind::Magnetometer
+                                              : Kind::Unknown;
+          f.sensor_path = ev_.graph().path(sensor);
+          const fe::ObjectId own = object(sensor, "mate_connector_attachment");
+          sensor_attachments_.emplace_back(view_.signals.size(), signal.sensor_fields.size(),
+                                           own != fe::kNoObject ? own : imu_attachment);
+        }
+        signal.sensor_fields.push_back(std::move(f));
+      }
+    }
     composite_parts_.push_back(std::move(parts));
     view_.signals.push_back(std::move(signal));
   }
@@ -571,6 +602,16 @@ class SystemBuilder {
   }
 
   // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
+  void resolve_sensor_attachments() {
+    std::unordered_map<fe::ObjectId, int> index;
+    for (size_t k = 0; k < view_.connectors.size(); ++k)
+      index[view_.connectors[k].object] = static_cast<int>(k);
+    for (const auto& [signal, field, connector] : sensor_attachments_) {
+      auto it = index.find(connector);
+      view_.signals[signal].sensor_fields[field].connector = it == index.end() ? -1 : it->second;
+    }
+  }
+
   // A composite's parts are signals of the tree, found by object.
   void resolve_composites() {
     std::unordered_map<fe::ObjectId, int> index;
@@ -815,6 +856,12 @@ class SystemBuilder {
   fe::ModelInfo* mean_value_engine_ = nullptr;
   fe::ModelInfo* empirical_engine_ = nullptr;
   fe::ModelInfo* broadcast_ = nullptr;
+  fe::ModelInfo* imu_output_ = nullptr;
+  fe::ModelInfo* accelerometer_ = nullptr;
+  fe::ModelInfo* gyroscope_ = nullptr;
+  fe::ModelInfo* magnetometer_ = nullptr;
+  // IMU fields' sensors: (signal, field, the sensor's connector object), resolved to connector indices.
+  std::vector<std::tuple<size_t, size_t, fe::ObjectId>> sensor_attachments_;
   fe::ModelInfo* affine_input_ = nullptr;
   fe::ModelInfo* affine_output_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;

@@ -171,6 +171,16 @@ struct Signal {
   double scale = 1, offset = 0;
   std::vector<int> parts;
   size_t sensors = 0;  // RobotOutput sensors (not mapped)
+  // Sensors.Signals.IMUOutput: per field, an axis (0 x, 1 y, 2 z) of one of the IMU's three-axis sensors.
+  struct SensorField {
+    enum class Kind { Unknown, Accelerometer, Gyroscope, Magnetometer };
+    Kind kind = Kind::Unknown;
+    int axis = 0;
+    int connector = -1;  // the sensor's mate_connector_attachment, -1 when none
+    std::string sensor_path;
+  };
+  bool imu = false;
+  std::vector<SensorField> sensor_fields;
   frontend::SourceRange where;
 };
 

@@ -41,6 +41,8 @@ class Signals : public openplx::testing::MjcfTest {
         return mjOBJ_EQUALITY;
       case mj::MjObject::Tendon:
         return mjOBJ_TENDON;
+      case mj::MjObject::Sensor:
+        return mjOBJ_SENSOR;
       case mj::MjObject::None:
         break;
     }

@@ -46,7 +46,7 @@ TEST(DistanceMate, HoldsItsLengthWhileSwingingAndFollowsItsTarget) {
     lowest = std::min(lowest, position.vec3().z());
   }
   EXPECT_LT(lowest, -0.99);  // it swung through the bottom
-  EXPECT_LT(worst, 2e-3);                // and stayed on its 1 m radius
+  EXPECT_LT(worst, 2e-3);    // and stayed on its 1 m radius
   EXPECT_NEAR(distance.real(), position.vec3().norm(), 1e-9);
   EXPECT_GT(std::abs(sim.output("rod.force_output").real()), 9.81 * 0.5);  // it carries the bob
   sim.input("rod.target_distance_input").set(0.5);
