@@ -20,6 +20,10 @@ void Lowering::emit_actuators(Element& root) {
       emit_shaft_motor(root, i);
       continue;
     }
+    if (i.kind == K::DistanceRange) {
+      emit_distance_range(root, i);
+      continue;
+    }
     if (i.mate < 0) {
       warn(i.where, "`" + i.path +
                         "` acts on connectors that no mate joins (or on a drivetrain it cannot "
@@ -175,6 +179,33 @@ void Lowering::speed_limit(Element& actuator, const sn::Interaction1D& i) {
   if (it == joint_properties_.end() || it->second->velocity <= 0) return;
   const double v = it->second->velocity;
   actuator.set("ctrllimited", "true").set("ctrlrange", number(-v) + " " + number(v));
+}
+
+}  // namespace openplx::mjcf
+
+namespace openplx::mjcf {
+
+// A DistanceRange keeps two connectors' distance within [start, end]: a spatial tendon between sites at them
+// with that length range, MuJoCo's tendon limit.
+void Lowering::emit_distance_range(Element& root, const sn::Interaction1D& i) {
+  const int a = i.connectors[0], b = i.connectors[1];
+  if (a < 0 || b < 0 || vertex_of_connector(a) == vertex_of_connector(b)) {
+    warn(i.where, "`" + i.path + "` needs two connectors on different bodies; it was left out");
+    return;
+  }
+  if (!(i.end > i.start) || i.start < 0) {
+    warn(i.where, "`" + i.path + "` has no distance range (start " + number(i.start) + ", end " +
+                      number(i.end) + "); it was left out");
+    return;
+  }
+  Element* tendons = root.child("tendon");
+  if (!tendons) tendons = &root.add("tendon");
+  Element& tendon = tendons->add("spatial");
+  tendon.set("name", name(i.path)).set("limited", i.enabled ? "true" : "false");
+  tendon.set("range", number(i.start) + " " + number(i.end));
+  tendon.add("site").set("site", site_for(a));
+  tendon.add("site").set("site", site_for(b));
+  distance_ranges_[index_in(view_.interactions, i)] = name(i.path);
 }
 
 }  // namespace openplx::mjcf

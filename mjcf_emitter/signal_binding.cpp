@@ -149,6 +149,8 @@ std::string_view to_string(Quantity quantity) {
       return "tendon_spring_force";
     case Quantity::TendonLength:
       return "tendon_length";
+    case Quantity::TendonLimitForce:
+      return "tendon_limit_force";
     case Quantity::DistanceTarget:
       return "distance_target";
     case Quantity::GearRatio:

@@ -66,7 +66,8 @@ enum class Quantity {
   JointLimitForce,    // Joint: the joint-limit constraint force (efc rows of type mjCNSTR_LIMIT_JOINT), 0 off
   EqualityForce,      // Equality: the force of its constraint row (efc type mjCNSTR_EQUALITY) on joint1
   TendonVelocity,     // Tendon: d->ten_velocity (a clutch's or brake's slip velocity)
-  TendonLength,       // Tendon: d->ten_length (a Distance mate's distance)
+  TendonLength,       // Tendon: d->ten_length (a Distance mate's or DistanceRange's distance)
+  TendonLimitForce,   // Tendon: its limit constraint's force (efc rows of type mjCNSTR_LIMIT_TENDON), 0 off
   TendonSpringForce,  // Tendon (a flexible or viscous gear): its passive force on joint1's side,
                       // -(stiffness (length - lengthspring) + damping velocity)
   BodyPosition,       // Body: d->xpos (the body frame's origin, world)

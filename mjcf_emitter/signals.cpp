@@ -153,6 +153,12 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
 
 SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
+  if (auto range = distance_ranges_.find(k); range != distance_ranges_.end() && !b.input) {
+    if (stem == "Position1D")
+      return mapped(std::move(b), Quantity::TendonLength, MjObject::Tendon, range->second);
+    if (stem == "Force1D")
+      return mapped(std::move(b), Quantity::TendonLimitForce, MjObject::Tendon, range->second);
+  }
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) return bind_enabled(std::move(b), k);
   const bool effort = any_of(stem, {"Torque1D", "Force1D"});
   const bool range = any_of(stem, {"TorqueRange", "ForceRange"});

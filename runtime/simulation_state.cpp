@@ -193,7 +193,7 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
       s.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
     s.binding = std::move(b);
     if (s.binding.quantity == Quantity::JointLimitForce || s.binding.quantity == Quantity::MotorForce ||
-        s.binding.quantity == Quantity::EqualityForce)
+        s.binding.quantity == Quantity::EqualityForce || s.binding.quantity == Quantity::TendonLimitForce)
       constraint_signals.push_back(static_cast<int>(signals.size()));
     by_name.emplace(s.info.name, static_cast<int>(signals.size()));
     signals.push_back(std::move(s));
@@ -372,9 +372,10 @@ void SimulationState::cache_constraint_forces() {
   for (int index : constraint_signals) {
     const ResolvedSignal& s = signals[static_cast<size_t>(index)];
     const int id = s.ids.front();
-    const int type = s.binding.quantity == Quantity::JointLimitForce ? mjCNSTR_LIMIT_JOINT
-                     : s.binding.quantity == Quantity::EqualityForce ? mjCNSTR_EQUALITY
-                                                                     : mjCNSTR_FRICTION_TENDON;
+    const int type = s.binding.quantity == Quantity::JointLimitForce    ? mjCNSTR_LIMIT_JOINT
+                     : s.binding.quantity == Quantity::EqualityForce    ? mjCNSTR_EQUALITY
+                     : s.binding.quantity == Quantity::TendonLimitForce ? mjCNSTR_LIMIT_TENDON
+                                                                        : mjCNSTR_FRICTION_TENDON;
     double total = 0;
     for (int r = 0; r < d->nefc; ++r) {
       if (d->efc_type[r] == type && d->efc_id[r] == id) total += d->efc_force[r];
@@ -637,6 +638,7 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::JointLimitForce:
     case Quantity::MotorForce:
     case Quantity::EqualityForce:
+    case Quantity::TendonLimitForce:
       out[0] = constraint_forces[static_cast<size_t>(index)];
       return;
     case Quantity::GearRatio:  // a gearbox in neutral has none

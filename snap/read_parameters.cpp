@@ -63,6 +63,7 @@ void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interacti
   switch (i.kind) {
     case K::LinearRange:
     case K::RotationalRange:
+    case K::DistanceRange:
       i.start = in.real(id, "start");
       i.end = in.real(id, "end");
       break;

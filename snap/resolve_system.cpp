@@ -88,7 +88,8 @@ class SystemBuilder {
                                                  {"LinearVelocityMotor", K::LinearVelocityMotor},
                                                  {"RotationalVelocityMotor", K::RotationalVelocityMotor},
                                                  {"ForceMotor", K::ForceMotor},
-                                                 {"TorqueMotor", K::TorqueMotor}};
+                                                 {"TorqueMotor", K::TorqueMotor},
+                                                 {"DistanceRange", K::DistanceRange}};
     for (const auto& [name, kind] : kinds1d) {
       if (fe::ModelInfo* m = program.loaded_model(std::string("Physics3D.Interactions.") + name)) {
         kinds1d_.emplace_back(m, kind);
@@ -492,6 +493,15 @@ class SystemBuilder {
     if (!list || list->kind != fe::Value::Kind::Array || list->array.size() != 2) return;
     const fe::Value& a = list->array[0];
     const fe::Value& b = list->array[1];
+    if (interaction.kind == Interaction1D::Kind::DistanceRange) {  // between any two connectors
+      for (size_t k = 0; k < view_.connectors.size(); ++k) {
+        if (a.kind == fe::Value::Kind::Object && view_.connectors[k].object == a.object)
+          interaction.connectors[0] = static_cast<int>(k);
+        if (b.kind == fe::Value::Kind::Object && view_.connectors[k].object == b.object)
+          interaction.connectors[1] = static_cast<int>(k);
+      }
+      return;
+    }
     for (size_t m = 0; m < view_.mates.size(); ++m) {
       const fe::Value* mate_list = ev_.value(view_.mates[m].object, "connectors");
       if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array.size() != 2) continue;

@@ -56,3 +56,36 @@ TEST(DistanceMate, HoldsItsLengthWhileSwingingAndFollowsItsTarget) {
 }
 
 }  // namespace
+
+namespace {
+
+// A DistanceRange [0, 1 m] is a rope: a 1 kg bob released 0.5 m below its anchor falls freely until the rope
+// is taut, then hangs 1 m below, the limit carrying its weight (MuJoCo's limit is soft: a few mm of stretch).
+TEST(DistanceRange, IsARope) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "rope.openplx") << "Bob is Physics3D.Bodies.RigidBody:\n"
+                                         "    inertia.mass: 1\n"
+                                         "    ball is Physics3D.Geometries.Sphere:\n"
+                                         "        radius: 0.05\n"
+                                         "    c is Physics3D.Interactions.MateConnector\n"
+                                         "Scene is Physics3D.System:\n"
+                                         "    anchor is Physics3D.Interactions.MateConnector\n"
+                                         "    bob is Bob:\n"
+                                         "        kinematics.local_transform.position: {0, 0, -0.5}\n"
+                                         "    rope is Physics3D.Interactions.DistanceRange:\n"
+                                         "        connectors: [anchor, bob.c]\n"
+                                         "        start: 0\n"
+                                         "        end: 1\n";
+  rt::Simulation sim = rt::Simulation::load((dir / "rope.openplx").string());
+  EXPECT_TRUE(sim.warnings().empty()) << sim.warnings().front();
+  rt::Output length = sim.output("rope.distance_output");
+  rt::Output force = sim.output("rope.force_output");
+  sim.advance(0.25);  // free fall: 0.5 + g t^2 / 2 = 0.8066 m
+  EXPECT_NEAR(length.real(), 0.5 + 9.81 * 0.25 * 0.25 / 2, 0.01);
+  EXPECT_EQ(force.real(), 0.0);
+  sim.advance(1.75);
+  EXPECT_NEAR(length.real(), 1.0, 0.01);
+  EXPECT_NEAR(std::abs(force.real()), 9.81, 0.05 * 9.81);
+}
+
+}  // namespace
