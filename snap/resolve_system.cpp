@@ -29,6 +29,7 @@ class SystemBuilder {
     body_ = program.builtin_model("Physics3D.Bodies.Body");
     connector_ = program.builtin_model("Physics3D.Interactions.MateConnector");
     adaptive_ = program.loaded_model("Physics3D.Interactions.AdaptiveMateConnector");
+    adaptive_trait_ = program.loaded_model("Physics3D.Interactions.ConnectorProperties.Adaptive");
     mate_ = program.builtin_model("Physics3D.Interactions.Mate");
     rigid_body_ = program.builtin_model("Physics3D.Bodies.RigidBody");
     contact_geometry_ = program.loaded_model("Physics3D.Geometries.ContactGeometry");
@@ -747,7 +748,9 @@ class SystemBuilder {
     c.object = id;
     c.owner = owner;
     c.path = ev_.graph().path(id);
-    c.adaptive = adaptive_ && ev_.graph().at(id).type->is_subtype_of(adaptive_);
+    const fe::ModelInfo* type = ev_.graph().at(id).type;
+    c.adaptive = (adaptive_ && type->is_subtype_of(adaptive_)) ||
+                 (adaptive_trait_ && type->is_subtype_of(adaptive_trait_));
     c.where = where_of(id);
     c.local = connector_frame(id, c.where);
     connector_of_[id] = static_cast<int>(view_.connectors.size());
@@ -843,6 +846,7 @@ class SystemBuilder {
   fe::ModelInfo* body_ = nullptr;
   fe::ModelInfo* connector_ = nullptr;
   fe::ModelInfo* adaptive_ = nullptr;
+  fe::ModelInfo* adaptive_trait_ = nullptr;  // 0.30's ConnectorProperties.Adaptive
   fe::ModelInfo* mate_ = nullptr;
   fe::ModelInfo* rigid_body_ = nullptr;
   fe::ModelInfo* contact_geometry_ = nullptr;

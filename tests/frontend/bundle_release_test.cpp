@@ -147,3 +147,43 @@ TEST(BundleRelease, WithoutDefaultBundlesOnlyTheReleaseIsSeen) {
 }
 
 }  // namespace
+
+namespace {
+
+// 0.31 spells connector kinds as traits on a plain MateConnector, and interactions' connector arrays as a
+// trait: the same model in both spellings assembles the same.
+TEST(BundleRelease, Spellings031AssembleAsTheOlderOnes) {
+  const openplx::testing::ScratchDir dir;
+  const std::string body =
+      "Box is Physics3D.Bodies.RigidBody:\n"
+      "    inertia.mass: 1\n"
+      "    shape is Physics3D.Geometries.Box:\n"
+      "        size: {0.2, 0.2, 0.2}\n"
+      "    fixed is Physics3D.Interactions.MateConnector:\n"
+      "        position: {0, 0, 0.1}\n"
+      "Scene is Physics3D.System:\n"
+      "    a is Box:\n"
+      "        kinematics.local_transform.position: {0, 0, 1}\n"
+      "    b is Box:\n"
+      "        kinematics.local_transform.position: {1, 0, 0}\n";
+  const std::string old_form = body +
+                               "        moving is Physics3D.Interactions.AdaptiveMateConnector\n"
+                               "    lock is Physics3D.Interactions.Lock:\n"
+                               "        connectors: [a.fixed, b.moving]\n";
+  const std::string new_form =
+      body +
+      "        moving is Physics3D.Interactions.MateConnector with "
+      "Physics3D.Interactions.ConnectorProperties.Adaptive\n"
+      "    lock is Physics3D.Interactions.Lock with Physics.Interactions.Configurations.ConnectorArray:\n"
+      "        connectors: [a.fixed, b.moving]\n";
+  std::ofstream(dir / "old.openplx") << old_form;
+  std::ofstream(dir / "new.openplx") << new_form;
+  std::string old_snap, new_snap, err;
+  ASSERT_EQ(convert({(dir / "old.openplx").string(), "--dump=snap"}, &old_snap, &err), 0) << err;
+  ASSERT_EQ(convert({(dir / "new.openplx").string(), "--dump=snap"}, &new_snap, &err), 0) << err;
+  EXPECT_EQ(new_snap, old_snap);
+  // The adaptive connector moved onto its partner, 1.1 m up at a.fixed, instead of b moving.
+  EXPECT_NE(new_snap.find("b.moving position {0.0, 0.0, 1.1}"), std::string::npos) << new_snap;
+}
+
+}  // namespace
