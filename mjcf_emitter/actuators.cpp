@@ -20,8 +20,8 @@ void Lowering::emit_actuators(Element& root) {
       emit_shaft_motor(root, i);
       continue;
     }
-    if (i.kind == K::DistanceRange) {
-      emit_distance_range(root, i);
+    if (i.kind == K::DistanceRange || i.kind == K::DistanceMotor) {
+      emit_distance_interaction(root, actuators, i);
       continue;
     }
     if (i.mate < 0) {
@@ -186,14 +186,18 @@ void Lowering::speed_limit(Element& actuator, const sn::Interaction1D& i) {
 namespace openplx::mjcf {
 
 // A DistanceRange keeps two connectors' distance within [start, end]: a spatial tendon between sites at them
-// with that length range, MuJoCo's tendon limit.
-void Lowering::emit_distance_range(Element& root, const sn::Interaction1D& i) {
+// with that length range, MuJoCo's tendon limit. A DistanceMotor drives that distance's rate: MuJoCo cannot
+// bound a velocity constraint on a spatial tendon, so it is a velocity servo on the tendon (gain half the
+// distance's effective mass per step: half the way to the target each step, stable for masses off by 4x)
+// within its effort range, with a warning.
+void Lowering::emit_distance_interaction(Element& root, Element& actuators, const sn::Interaction1D& i) {
   const int a = i.connectors[0], b = i.connectors[1];
   if (a < 0 || b < 0 || vertex_of_connector(a) == vertex_of_connector(b)) {
     warn(i.where, "`" + i.path + "` needs two connectors on different bodies; it was left out");
     return;
   }
-  if (!(i.end > i.start) || i.start < 0) {
+  const bool range = i.kind == sn::Interaction1D::Kind::DistanceRange;
+  if (range && (!(i.end > i.start) || i.start < 0)) {
     warn(i.where, "`" + i.path + "` has no distance range (start " + number(i.start) + ", end " +
                       number(i.end) + "); it was left out");
     return;
@@ -201,11 +205,34 @@ void Lowering::emit_distance_range(Element& root, const sn::Interaction1D& i) {
   Element* tendons = root.child("tendon");
   if (!tendons) tendons = &root.add("tendon");
   Element& tendon = tendons->add("spatial");
-  tendon.set("name", name(i.path)).set("limited", i.enabled ? "true" : "false");
-  tendon.set("range", number(i.start) + " " + number(i.end));
+  tendon.set("name", name(i.path));
+  if (range)
+    tendon.set("limited", i.enabled ? "true" : "false").set("range", number(i.start) + " " + number(i.end));
   tendon.add("site").set("site", site_for(a));
   tendon.add("site").set("site", site_for(b));
-  distance_ranges_[index_in(view_.interactions, i)] = name(i.path);
+  const int index = index_in(view_.interactions, i);
+  distance_ranges_[index] = name(i.path);
+  if (range) return;
+  double inverse_mass = 0;  // of the distance: both bodies' (the world's is zero)
+  for (int c : {a, b}) {
+    const int n = vertex_of_connector(c);
+    if (n >= 0 && !is_static(n))
+      inverse_mass += 1 / std::max(body_mass_.count(n) ? body_mass_.at(n).mass : 1.0, 1e-9);
+  }
+  const double kv = inverse_mass > 0 ? 0.5 / (inverse_mass * options_.timestep) : 0.0;
+  Element& motor = actuators.add("general");
+  motor.set("name", name(i.path))
+      .set("tendon", name(i.path))
+      .set("gainprm", kv)
+      .set("biastype", "affine")
+      .set("biasprm", "0 0 " + number(-kv));
+  effort_limits(motor, i);
+  if (!i.enabled) motor.set("gear", "0");
+  effort_ranges_[index] = effort_range(i);
+  actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.target_speed.value_or(0.0)};
+  warn(i.where, "`" + i.path +
+                    "` is a velocity servo here (MuJoCo has no force-limited velocity constraint on a "
+                    "distance): it closes half its speed error each step instead of meeting it at once");
 }
 
 }  // namespace openplx::mjcf

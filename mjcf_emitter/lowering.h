@@ -141,7 +141,7 @@ class Lowering {
 
   // -------------------------------------------------------------------------------- actuators.cpp
   void emit_actuators(Element& root);
-  void emit_distance_range(Element& root, const sn::Interaction1D& i);
+  void emit_distance_interaction(Element& root, Element& actuators, const sn::Interaction1D& i);
   void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
   void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
                    std::map<Element*, double>& dampings);
@@ -257,7 +257,7 @@ class Lowering {
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
-  std::map<int, std::string> distance_ranges_;                  // DistanceRange interaction -> its tendon
+  std::map<int, std::string> distance_ranges_;                  // DistanceRange/Motor -> its tendon
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
 };
 

@@ -153,11 +153,16 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
 
 SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
-  if (auto range = distance_ranges_.find(k); range != distance_ranges_.end() && !b.input) {
-    if (stem == "Position1D")
+  if (auto range = distance_ranges_.find(k); range != distance_ranges_.end()) {
+    const bool motor = i.kind == sn::Interaction1D::Kind::DistanceMotor;
+    if (stem == "Position1D" && !b.input)
       return mapped(std::move(b), Quantity::TendonLength, MjObject::Tendon, range->second);
-    if (stem == "Force1D")
+    if (stem == "Force1D" && !b.input && !motor)
       return mapped(std::move(b), Quantity::TendonLimitForce, MjObject::Tendon, range->second);
+    if (stem == "LinearVelocity1D" && motor) {  // the servo's target, also readable
+      b.initial = actuator_ctrl_.at(k).second;
+      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, name(i.path));
+    }
   }
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) return bind_enabled(std::move(b), k);
   const bool effort = any_of(stem, {"Torque1D", "Force1D"});

@@ -76,6 +76,7 @@ void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interacti
       break;
     case K::LinearVelocityMotor:
     case K::RotationalVelocityMotor:
+    case K::DistanceMotor:
       i.gain = in.number(id, "gain");
       i.target_speed = in.number(id, "target_speed");
       break;

@@ -90,7 +90,8 @@ class SystemBuilder {
                                                  {"RotationalVelocityMotor", K::RotationalVelocityMotor},
                                                  {"ForceMotor", K::ForceMotor},
                                                  {"TorqueMotor", K::TorqueMotor},
-                                                 {"DistanceRange", K::DistanceRange}};
+                                                 {"DistanceRange", K::DistanceRange},
+                                                 {"DistanceMotor", K::DistanceMotor}};
     for (const auto& [name, kind] : kinds1d) {
       if (fe::ModelInfo* m = program.loaded_model(std::string("Physics3D.Interactions.") + name)) {
         kinds1d_.emplace_back(m, kind);
@@ -494,7 +495,8 @@ class SystemBuilder {
     if (!list || list->kind != fe::Value::Kind::Array || list->array.size() != 2) return;
     const fe::Value& a = list->array[0];
     const fe::Value& b = list->array[1];
-    if (interaction.kind == Interaction1D::Kind::DistanceRange) {  // between any two connectors
+    if (interaction.kind == Interaction1D::Kind::DistanceRange ||
+        interaction.kind == Interaction1D::Kind::DistanceMotor) {  // between any two connectors
       for (size_t k = 0; k < view_.connectors.size(); ++k) {
         if (a.kind == fe::Value::Kind::Object && view_.connectors[k].object == a.object)
           interaction.connectors[0] = static_cast<int>(k);

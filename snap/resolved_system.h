@@ -130,14 +130,16 @@ struct Interaction1D {
     ForceMotor,
     TorqueMotor,
     DistanceRange,
+    DistanceMotor,
     Other
   };
   ObjectRef object;
   Kind kind = Kind::Other;
   std::string path;
-  int mate = -1;                 // the mate with the same two connectors, -1 when none
-  int connectors[2] = {-1, -1};  // DistanceRange: its connectors (indices into ResolvedSystem::connectors)
-  int shaft = -1;                // a drivetrain motor: the shaft it drives
+  int mate = -1;  // the mate with the same two connectors, -1 when none
+  int connectors[2] = {
+      -1, -1};     // DistanceRange, DistanceMotor: its connectors (indices into ResolvedSystem::connectors)
+  int shaft = -1;  // a drivetrain motor: the shaft it drives
   bool enabled = true;
   double start = 0, end = 0;                     // ranges
   double stiffness = 0;                          // springs: flexibility.stiffness (0: none given)

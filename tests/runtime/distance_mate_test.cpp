@@ -89,3 +89,80 @@ TEST(DistanceRange, IsARope) {
 }
 
 }  // namespace
+
+namespace {
+
+// A DistanceMotor on a 2 kg slider along x, 1 m from its anchor: the distance grows at the target 0.5 m/s
+// (a servo: within a few steps, then exactly); its speed input reverses it; its force output is the push.
+TEST(DistanceMotor, DrivesTheDistanceRate) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "motor.openplx") << "Slider is Physics3D.Bodies.RigidBody:\n"
+                                          "    inertia.mass: 2\n"
+                                          "    ball is Physics3D.Geometries.Sphere:\n"
+                                          "        radius: 0.05\n"
+                                          "    c is Physics3D.Interactions.MateConnector:\n"
+                                          "        main_axis: Math.Vec3.X_AXIS()\n"
+                                          "Scene is Physics3D.System:\n"
+                                          "    anchor is Physics3D.Interactions.MateConnector:\n"
+                                          "        main_axis: Math.Vec3.X_AXIS()\n"
+                                          "    rail is Physics3D.Interactions.MateConnector:\n"
+                                          "        position: {1, 0, 0}\n"
+                                          "        main_axis: Math.Vec3.X_AXIS()\n"
+                                          "    slider is Slider\n"
+                                          "    slide is Physics3D.Interactions.Prismatic:\n"
+                                          "        connectors: [rail, slider.c]\n"
+                                          "    push is Physics3D.Interactions.DistanceMotor:\n"
+                                          "        connectors: [anchor, slider.c]\n"
+                                          "        target_speed: 0.5\n"
+                                          "        min_effort: -1000\n"
+                                          "        max_effort: 1000\n";
+  rt::Simulation sim = rt::Simulation::load((dir / "motor.openplx").string());
+  ASSERT_EQ(sim.warnings().size(), 1u);  // the servo's
+  EXPECT_NE(sim.warnings().front().find("is a velocity servo here"), std::string::npos);
+  rt::Output speed = sim.output("slide.velocity_output");
+  rt::Output force = sim.output("push.force_output");
+  sim.step();
+  EXPECT_NEAR(speed.real(), 0.25, 1e-9);              // half the way in one step: gain = m / (2 h)
+  EXPECT_NEAR(force.real(), 2 * 0.25 / 0.002, 1e-6);  // the push that did it: m dv / h
+  sim.advance(0.1);
+  EXPECT_NEAR(speed.real(), 0.5, 1e-9);
+  sim.input("push.target_speed_input").set(-0.5);
+  sim.advance(0.1);
+  EXPECT_NEAR(speed.real(), -0.5, 1e-9);
+  EXPECT_NEAR(force.real(), 0.0, 1e-6);  // nothing resists: no force at speed
+}
+
+// The push stays within the effort range: 100 N on 2 kg gains 0.1 m/s per 2 ms step until the target.
+TEST(DistanceMotor, PushesWithinItsEffortRange) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "motor.openplx") << "Slider is Physics3D.Bodies.RigidBody:\n"
+                                          "    inertia.mass: 2\n"
+                                          "    ball is Physics3D.Geometries.Sphere:\n"
+                                          "        radius: 0.05\n"
+                                          "    c is Physics3D.Interactions.MateConnector:\n"
+                                          "        main_axis: Math.Vec3.X_AXIS()\n"
+                                          "Scene is Physics3D.System:\n"
+                                          "    anchor is Physics3D.Interactions.MateConnector:\n"
+                                          "        main_axis: Math.Vec3.X_AXIS()\n"
+                                          "    rail is Physics3D.Interactions.MateConnector:\n"
+                                          "        position: {1, 0, 0}\n"
+                                          "        main_axis: Math.Vec3.X_AXIS()\n"
+                                          "    slider is Slider\n"
+                                          "    slide is Physics3D.Interactions.Prismatic:\n"
+                                          "        connectors: [rail, slider.c]\n"
+                                          "    push is Physics3D.Interactions.DistanceMotor:\n"
+                                          "        connectors: [anchor, slider.c]\n"
+                                          "        target_speed: 0.5\n"
+                                          "        min_effort: -100\n"
+                                          "        max_effort: 100\n";
+  rt::Simulation sim = rt::Simulation::load((dir / "motor.openplx").string());
+  rt::Output speed = sim.output("slide.velocity_output");
+  rt::Output force = sim.output("push.force_output");
+  sim.step();
+  EXPECT_NEAR(speed.real(), 0.1, 1e-9);
+  EXPECT_NEAR(force.real(), 100.0, 1e-9);
+  sim.step();
+  EXPECT_NEAR(speed.real(), 0.2, 1e-9);
+}
+
+}  // namespace
