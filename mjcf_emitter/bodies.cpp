@@ -1,6 +1,7 @@
 // Lowering pass, bodies: <body> with its pose, <inertial> and <geom>s, world geoms, mocap and free bodies.
 #include "mjcf_emitter/lowering.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 namespace openplx::mjcf {
@@ -123,11 +124,20 @@ void Lowering::emit_inertial(Element& body, int node) {
     // The tensor turned into the body's axes: MJCF takes fullinertia or a quat, never both.
     const Eigen::Matrix3d i = r * n.body.inertia * r.transpose();
     body_mass_[node] = {n.body.mass, n.body.cm.position, i};
-    body.add("inertial")
-        .set("pos", n.body.cm.position)
-        .set("mass", n.body.mass)
-        .set("fullinertia", number(i(0, 0)) + " " + number(i(1, 1)) + " " + number(i(2, 2)) + " " +
-                                number(i(0, 1)) + " " + number(i(0, 2)) + " " + number(i(1, 2)));
+    Element& inertial = body.add("inertial").set("pos", n.body.cm.position).set("mass", n.body.mass);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(i);
+    if (principal.eigenvalues().minCoeff() <= 0) {
+      // An ideal rod (a zero principal moment): MuJoCo takes it only as principal axes and moments, not as a
+      // full tensor (which must be positive definite).
+      Eigen::Matrix3d axes = principal.eigenvectors();
+      if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+      const Eigen::Quaterniond q(axes);
+      inertial.set("quat", number(q.w()) + " " + number(q.x()) + " " + number(q.y()) + " " + number(q.z()))
+          .set("diaginertia", principal.eigenvalues().cwiseMax(0.0).eval());
+      return;
+    }
+    inertial.set("fullinertia", number(i(0, 0)) + " " + number(i(1, 1)) + " " + number(i(2, 2)) + " " +
+                                    number(i(0, 1)) + " " + number(i(0, 2)) + " " + number(i(1, 2)));
     return;
   }
   std::vector<std::pair<const sn::Geometry*, double>> parts;
@@ -146,6 +156,10 @@ void Lowering::emit_inertial(Element& body, int node) {
     return;
   }
   std::optional<MassProperties> p = combine(parts);
+  const int edge = edges_[node].mate;
+  if (!p && n.body.mass <= 0 && edge >= 0 && view_.mates[edge].type == sn::MateType::Lock) {
+    return;  // a massless frame welded to its parent (a URDF tool frame): MuJoCo keeps it massless too
+  }
   if (!p) {
     const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
     warn(n.where, "`" + n.path +

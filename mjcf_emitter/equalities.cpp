@@ -226,8 +226,8 @@ void Lowering::emit_distance_mates(Element& root) {
 // values), a differential ties its three shafts with a fixed tendon held at its initial length:
 // w_drive = gear_ratio (w_left + w_right) / 2. Gears: ratio = input speed / output speed (UNCONFIRMED for
 // AGX; the corpus only uses -1, where both readings agree).
-// Joints that follow another (URDF mimic): a joint equality, follower = offset + multiplier * leader
-// (MuJoCo measures both from the initial configuration).
+// Joints that follow another (URDF mimic): a joint equality, follower = offset + multiplier * leader in
+// joint values (a joint's value includes its mate's initial angle or position).
 void Lowering::emit_joint_couplings(Element& root) {
   Element* equality = root.child("equality");
   for (const sn::JointCoupling& c : view_.joint_couplings) {
@@ -243,11 +243,15 @@ void Lowering::emit_joint_couplings(Element& root) {
                         "left out");
       continue;
     }
+    // MuJoCo measures both joints from their qpos0 (`ref`): follower = offset + multiplier leader in joint
+    // values is, from there, a constant term offset + multiplier leader0 - follower0.
+    auto ref = [](const Element* j) { return j->get("ref") ? std::stod(*j->get("ref")) : 0.0; };
+    const double constant = c.offset + c.multiplier * ref(leader) - ref(follower);
     equality->add("joint")
         .set("name", name(c.path))
         .set("joint1", *follower->get("name"))
         .set("joint2", *leader->get("name"))
-        .set("polycoef", number(c.offset) + " " + number(c.multiplier) + " 0 0 0");
+        .set("polycoef", number(constant) + " " + number(c.multiplier) + " 0 0 0");
   }
 }
 

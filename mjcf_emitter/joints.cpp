@@ -13,13 +13,15 @@ void Lowering::emit_joints(Element& body, int node, int m) {
   const Eigen::Vector3d pos = c.local.position;
   // connectors[1] relative to connectors[0] about +main_axis: on side 0 the body turns the other way.
   const Eigen::Vector3d axis = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitZ());
-  auto joint = [&](const char* type, const std::string& suffix, double ref) {
+  auto joint = [&](const char* type, const std::string& suffix, double ref,
+                   const Eigen::Vector3d& along = Eigen::Vector3d::Zero()) {
+    const Eigen::Vector3d direction = along.isZero() ? axis : along;
     Element& j = body.add("joint");
     j.set("name", name(mate.path) + suffix).set("type", type).set("pos", pos);
-    if (std::string(type) != "ball") j.set("axis", axis);
+    if (std::string(type) != "ball") j.set("axis", direction);
     if (ref != 0.0) j.set("ref", ref);
     joint_of_mate_[m].push_back(&j);
-    joint_info_[&j] = {node, pos, axis.normalized(), std::string(type) == "hinge"};
+    joint_info_[&j] = {node, pos, direction.normalized(), std::string(type) == "hinge"};
     return &j;
   };
   switch (mate.type) {
@@ -38,6 +40,14 @@ void Lowering::emit_joints(Element& body, int node, int m) {
     case sn::MateType::Ball:
       joint("ball", "", 0.0);
       break;
+    case sn::MateType::Planar: {  // MuJoCo's URDF importer's names; the connector's x is the _TX direction
+      const Eigen::Vector3d tx = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitX());
+      const Eigen::Vector3d ty = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitY());
+      joint("slide", "_TX", 0.0, tx);
+      joint("slide", "_TY", 0.0, ty);
+      joint("hinge", "_RZ", 0.0);
+      break;
+    }
     default:
       break;
   }
@@ -96,12 +106,19 @@ void Lowering::apply_joint_properties(std::map<Element*, double>& dampings) {
                           "MuJoCo's equality constraints have no damping or friction, so it was left out");
       continue;
     }
-    Element* joint = joint_for(p.mate, view_.mates[p.mate].type != sn::MateType::Prismatic);
-    if (!joint) continue;  // a Lock: nothing moves
-    if (p.damping > 0) dampings[joint] += p.damping;
-    if (p.friction > 0) {
-      const std::string* had = joint->get("frictionloss");
-      joint->set("frictionloss", p.friction + (had ? std::stod(*had) : 0.0));
+    // A planar mate's three joints all take the URDF dynamics, as MuJoCo's importer gives them.
+    std::vector<Element*> joints;
+    if (view_.mates[p.mate].type == sn::MateType::Planar) {
+      joints = joint_of_mate_[p.mate];
+    } else if (Element* j = joint_for(p.mate, view_.mates[p.mate].type != sn::MateType::Prismatic)) {
+      joints.push_back(j);
+    }
+    for (Element* joint : joints) {  // none for a Lock: nothing moves
+      if (p.damping > 0) dampings[joint] += p.damping;
+      if (p.friction > 0) {
+        const std::string* had = joint->get("frictionloss");
+        joint->set("frictionloss", p.friction + (had ? std::stod(*had) : 0.0));
+      }
     }
   }
 }

@@ -109,6 +109,7 @@ class SystemBuilder {
         mate_kinds_.emplace_back(m, type);
       }
     }
+    if (fe::ModelInfo* m = program.loaded_model("Urdf.Planar")) mate_kinds_.emplace_back(m, MateType::Planar);
   }
 
   ResolvedSystem build(fe::ObjectId root) {
@@ -778,6 +779,11 @@ class SystemBuilder {
     Mate mate;
     mate.object = id;
     mate.path = ev_.graph().path(id);
+    // A URDF joint renamed in OpenPLX (it shares its name with a link) keeps its URDF name in MuJoCo.
+    if (const fe::Value* urdf = ev_.value(id, "urdf_name"); urdf && urdf->kind == fe::Value::Kind::String) {
+      const size_t dot = mate.path.rfind('.');
+      mate.path = (dot == std::string::npos ? "" : mate.path.substr(0, dot + 1)) + urdf->string_value;
+    }
     mate.where = where_of(id);
     const fe::ModelInfo* type = ev_.graph().at(id).type;
     for (const auto& [model, kind] : mate_kinds_) {
@@ -954,6 +960,8 @@ std::string mate_type_name(MateType type) {
       return "Distance";
     case MateType::ConstantVelocity:
       return "ConstantVelocity";
+    case MateType::Planar:
+      return "Planar";
     case MateType::Other:
       return "Mate";
   }

@@ -197,7 +197,7 @@ struct Connector {
   frontend::SourceRange where;
 };
 
-enum class MateType { Lock, Hinge, Prismatic, Cylindrical, Ball, Distance, ConstantVelocity, Other };
+enum class MateType { Lock, Hinge, Prismatic, Cylindrical, Ball, Distance, ConstantVelocity, Planar, Other };
 
 // A mate's stiffness and damping in one of its six directions.
 struct DofCompliance {

@@ -252,6 +252,10 @@ Residual mate_residual(const Mate& mate, const Transform& frame0, const Transfor
     case MateType::ConstantVelocity:  // free: rotations
       r.distance = relative.position.norm();
       break;
+    case MateType::Planar:  // free: translation across z, rotation about it
+      r.distance = std::abs(relative.position.z());
+      r.angle = axis_angle(relative.rotation, z);
+      break;
     case MateType::Distance:
     case MateType::Other:
       break;

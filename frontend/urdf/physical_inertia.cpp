@@ -17,6 +17,11 @@ std::optional<InertiaRepair> repair_inertia(double mass, const Eigen::Matrix3d& 
   if (positive && triangle) return std::nullopt;
   std::ostringstream what;
   what.precision(6);
+  if (p.minCoeff() == 0 && triangle) {  // an ideal rod (or point): a limit of physical bodies MuJoCo accepts
+    what << "principal moments " << p(0) << ", " << p(1) << ", " << p(2)
+         << " include a zero (an ideal thin rod); kept as written, as MuJoCo's own importer keeps it";
+    return InertiaRepair{tensor, what.str()};
+  }
   what << "principal moments " << p(0) << ", " << p(1) << ", " << p(2)
        << (positive ? " violate the triangle inequality (A + B >= C)" : " are not all positive");
   double mean = p.sum() / 3;

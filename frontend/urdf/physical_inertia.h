@@ -15,8 +15,9 @@ struct InertiaRepair {
 // A tensor is physical when it is symmetric positive definite and its principal moments satisfy the
 // triangle inequality (A + B >= C). Otherwise the principal moments become their mean (MuJoCo's
 // `balanceinertia` rule, which keeps the trace), or, when that mean is not positive, those of a solid
-// sphere of water density and the given mass. nullopt when the tensor is physical or the mass is not
-// positive.
+// sphere of water density and the given mass. A zero principal moment that keeps the triangle inequality
+// (an ideal rod) is reported but kept, as MuJoCo keeps it. nullopt when the tensor is physical or the mass
+// is not positive.
 std::optional<InertiaRepair> repair_inertia(double mass, const Eigen::Matrix3d& tensor);
 
 }  // namespace openplx::frontend

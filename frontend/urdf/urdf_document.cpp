@@ -183,7 +183,7 @@ std::optional<UrdfFinding> UrdfDocument::loop_finding() const {
 }
 
 std::string UrdfDocument::lenient_text() {
-  bool changed = false;
+  bool changed = check_values();
   // The DOM itself (not the const index) is edited here.
   for (XMLElement* j = doc_.FirstChildElement("robot")->FirstChildElement("joint"); j;
        j = j->NextSiblingElement("joint")) {

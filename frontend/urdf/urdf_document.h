@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,11 @@ class UrdfDocument {
 
   // The text urdfdom should read: the URDF itself, or, when a joint's <limit> lacks the effort or velocity
   // URDF requires (MuJoCo's compiler accepts that), a copy with them set to 0 (no limit) and a warning.
+  // Malformed numbers become located errors here, URDF 1.1 forms urdfdom 3.0.1 cannot read are rewritten
+  // (see check_values).
   std::string lenient_text();
+  // Whether a shape element was a URDF 1.1 <capsule> (urdfdom reads it as a cylinder).
+  bool is_capsule(const tinyxml2::XMLElement* e) const;
 
   // Turns urdfdom's messages (which carry no position) into one located error: at the first element a
   // message names, or at the joint that closes a loop, or else at `<robot>`; the other messages are notes.
@@ -52,6 +57,7 @@ class UrdfDocument {
                                     const std::string& name, int nth) const;
   std::optional<UrdfFinding> loop_finding() const;
   const tinyxml2::XMLElement* element_with_attribute_text(const std::string& needle) const;
+  bool check_values();  // urdf_values.cpp; true when the DOM was rewritten
 
   std::string text_;
   tinyxml2::XMLDocument doc_;
@@ -60,6 +66,7 @@ class UrdfDocument {
   std::vector<uint32_t> line_starts_;
   std::multimap<std::string, const tinyxml2::XMLElement*> links_, joints_;
   std::vector<UrdfFinding> findings_;
+  std::set<const tinyxml2::XMLElement*> capsules_;
 };
 
 // While alive, urdfdom's console messages are collected into `errors` and `warnings` instead of

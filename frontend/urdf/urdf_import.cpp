@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "frontend/urdf/package_lookup.h"
 #include "frontend/urdf/package_uri.h"
 #include "frontend/urdf/physical_inertia.h"
 
@@ -97,21 +98,16 @@ class Writer {
   uint32_t origin_ = 0;
 };
 
-// Where a mesh file is: relative names resolve against the URDF's folder; `package://P/rest` against the
-// folder named P at or above the URDF, or a folder P beside one of those (a Urdf.PackagePath in the model
-// overrides this later, see `package_uri`).
+// Where a mesh file is: relative names resolve against the URDF's folder; `package://P/rest` against
+// package P as find_package looks it up (a Urdf.PackagePath in the model overrides this later, see
+// `package_uri`), or the URDF's folder when no package of that name is found (the missing file is then
+// reported with its path).
 std::string mesh_path(const std::string& filename, const fs::path& urdf_dir) {
   std::string name = filename;
   if (name.rfind("file://", 0) == 0) name = name.substr(7);
   if (const std::optional<PackageUri> uri = parse_package_uri(name)) {
-    const std::string &package = uri->package, &inside = uri->inside;
-    for (fs::path dir = urdf_dir; !dir.empty(); dir = dir.parent_path()) {
-      if (dir.filename() == package) return (dir / inside).lexically_normal().generic_string();
-      if (fs::is_directory(dir / package))
-        return (dir / package / inside).lexically_normal().generic_string();
-      if (dir == dir.parent_path()) break;
-    }
-    return (urdf_dir / inside).lexically_normal().generic_string();
+    const fs::path root = find_package(uri->package, urdf_dir).value_or(urdf_dir);
+    return (root / uri->inside).lexically_normal().generic_string();
   }
   const fs::path p(name);
   return (p.is_absolute() ? p : urdf_dir / p).lexically_normal().generic_string();
@@ -135,7 +131,7 @@ const XMLElement* shape_element(const UrdfDocument& doc, const std::string& link
 
 // One geometry of a link: collision geometries are Physics3D ones, visual ones Visuals ones.
 bool geometry(Context& c, const std::string& name, const urdf::Geometry& g, const urdf::Pose& origin,
-              bool visual, const std::string& material) {
+              bool visual, const std::string& material, bool capsule) {
   const std::string ns = visual ? "Visuals.Geometries." : "Physics3D.Geometries.";
   const std::string in = "            ";
   Eigen::Quaterniond q = to_eigen(origin.rotation);
@@ -152,7 +148,8 @@ bool geometry(Context& c, const std::string& name, const urdf::Geometry& g, cons
       const auto& cyl = static_cast<const urdf::Cylinder&>(g);
       // URDF cylinders lie along z, OpenPLX ones along y: turn y onto z.
       q = q * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
-      c.w.line("        " + id(name) + " is " + ns + "Cylinder:");
+      // A URDF 1.1 capsule reaches here as a cylinder (urdf_values.cpp): same radius and cylindrical length.
+      c.w.line("        " + id(name) + " is " + ns + (capsule ? "Capsule:" : "Cylinder:"));
       c.w.line(in + "radius: " + num(cyl.radius));
       c.w.line(in + "height: " + num(cyl.length));
       break;
@@ -260,14 +257,69 @@ std::string mate_of(const urdf::Joint& joint) {
   switch (joint.type) {
     case urdf::Joint::REVOLUTE:
     case urdf::Joint::CONTINUOUS:
-      return "Hinge";
+      return "Physics3D.Interactions.Hinge";
     case urdf::Joint::PRISMATIC:
-      return "Prismatic";
+      return "Physics3D.Interactions.Prismatic";
     case urdf::Joint::FIXED:
-      return "Lock";
+      return "Physics3D.Interactions.Lock";
+    case urdf::Joint::PLANAR:
+      return "Urdf.Planar";
     default:
       return "";
   }
+}
+
+// OpenPLX names of the joints. URDF keeps links and joints in separate namespaces, a generated system has
+// one scope: a joint named like a link (or like another generated name) becomes `<name>_joint`, numbered if
+// that is taken too. Its MuJoCo joint keeps the URDF name (`urdf_name`).
+std::map<std::string, std::string> joint_attributes(const urdf::ModelInterface& robot) {
+  static constexpr const char* kDerived[] = {"", "_limits", "_properties", "_mimic", "_parent", "_child"};
+  std::set<std::string> taken{"world_anchor", "root_lock", "root_anchor"};
+  for (const auto& [name, link] : robot.links_) taken.insert(name);
+  auto free = [&](const std::string& a) {
+    return std::none_of(std::begin(kDerived), std::end(kDerived),
+                        [&](const char* suffix) { return taken.count(a + suffix) > 0; });
+  };
+  std::map<std::string, std::string> attributes;
+  for (const auto& [name, joint] : robot.joints_) {  // std::map: name order, deterministic
+    std::string a = name;
+    for (int k = 1; !free(a); ++k) a = name + "_joint" + (k == 1 ? "" : std::to_string(k));
+    for (const char* suffix : kDerived) taken.insert(a + suffix);
+    attributes[name] = a;
+  }
+  return attributes;
+}
+
+// Where each joint starts: at zero, or a mimic follower where its mimic puts it (offset + multiplier times
+// its leader's start), so that the coupling holds from the first step. Chains follow their leaders.
+std::map<std::string, double> joint_starts(const urdf::ModelInterface& robot) {
+  std::map<std::string, double> start;
+  for (const auto& [name, joint] : robot.joints_) {
+    double value = 0, scale = 1;
+    std::set<std::string> seen;
+    for (urdf::JointConstSharedPtr j = joint; j && j->mimic && seen.insert(j->name).second;) {
+      value += scale * j->mimic->offset;
+      scale *= j->mimic->multiplier;
+      j = robot.getJoint(j->mimic->joint_name);
+    }
+    start[name] = value;
+  }
+  return start;
+}
+
+// The in-plane direction MuJoCo's importer takes as a planar joint's `_TX` axis: x turned by the shortest
+// rotation from z onto the plane's normal.
+Eigen::Vector3d planar_x(const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ(), n = normal.normalized();
+  const Eigen::Vector3d cross = z.cross(n);
+  if (cross.norm() < 1e-14) return Eigen::Vector3d::UnitX();  // along z, or a half turn about x
+  return Eigen::AngleAxisd(std::atan2(cross.norm(), n.z()), cross.normalized()) * Eigen::Vector3d::UnitX();
+}
+
+// A joint connector's normal: any direction across the axis, or for a planar joint its `_TX` direction.
+Eigen::Vector3d connector_normal(const urdf::Joint& joint) {
+  const Eigen::Vector3d axis = joint_axis(joint);
+  return joint.type == urdf::Joint::PLANAR ? planar_x(axis) : normal_to(axis);
 }
 
 }  // namespace
@@ -281,6 +333,9 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
   }
   const std::string lenient = doc.lenient_text();
   result.findings = std::move(doc.findings());
+  if (std::any_of(result.findings.begin(), result.findings.end(),
+                  [](const UrdfFinding& f) { return f.error; }))
+    return result;  // malformed values: located here, before urdfdom would drop what holds them
   std::vector<std::string> errors, warnings;
   urdf::ModelInterfaceSharedPtr robot;
   {
@@ -352,17 +407,19 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
                   [](const UrdfFinding& f) { return f.error; }))
     return result;
   for (const auto& joint : joints) {
-    if (joint->type == urdf::Joint::PLANAR) {  // urdfdom itself rejects unknown types
-      result.findings.push_back(
-          {true,
-           doc.offset_of(doc.joint(joint->name)),
-           "joint `" + joint->name +
-               "` is planar, which neither MuJoCo 2.2.2 (no planar joint) nor OpenPLX (no "
-               "planar mate) has; replace it by two prismatic joints and a revolute one",
-           {}});
-      return result;
+    const XMLElement* limit = UrdfDocument::child(doc.joint(joint->name), "limit");
+    if (joint->type == urdf::Joint::PLANAR && limit) {
+      result.findings.push_back({false,
+                                 doc.offset_of(limit),
+                                 "joint `" + joint->name +
+                                     "` is planar: URDF limits only revolute and prismatic joints, so its "
+                                     "<limit> was ignored (MuJoCo's own importer puts the range on `" +
+                                     joint->name + "_TX` alone)",
+                                 {}});
     }
   }
+  const std::map<std::string, std::string> attribute = joint_attributes(*robot);
+  const std::map<std::string, double> start = joint_starts(*robot);
   declare_materials(c, *robot, model_name);
   w.from(nullptr);
   w.line(id(model_name) + " is Physics3D.System:");
@@ -384,10 +441,10 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     for (const auto& joint : joints) {
       if (joint->parent_link_name != "world") continue;
       w.from(doc.joint(joint->name));
-      const Eigen::Vector3d axis = joint_axis(*joint);
+      const Eigen::Vector3d axis = joint_axis(*joint), normal = connector_normal(*joint);
       const urdf::Pose& o = joint->parent_to_joint_origin_transform;
       const Eigen::Quaterniond r = to_eigen(o.rotation);
-      w.connector(joint->name + "_parent", to_eigen(o.position), r * axis, r * normal_to(axis), "    ");
+      w.connector(attribute.at(joint->name) + "_parent", to_eigen(o.position), r * axis, r * normal, "    ");
     }
   }
   for (const auto& link : links) {
@@ -418,17 +475,21 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     for (size_t k = 0; k < link->collision_array.size(); ++k) {
       const auto& col = link->collision_array[k];
       if (!col->geometry) continue;
-      w.from(shape_element(doc, link->name, "collision", k));
-      if (!geometry(c, geometry_name("collision", col->name, k), *col->geometry, col->origin, false, ""))
+      const XMLElement* shape = shape_element(doc, link->name, "collision", k);
+      w.from(shape);
+      if (!geometry(c, geometry_name("collision", col->name, k), *col->geometry, col->origin, false, "",
+                    doc.is_capsule(shape)))
         return result;
     }
     for (size_t k = 0; k < link->visual_array.size(); ++k) {
       const auto& v = link->visual_array[k];
       if (!v->geometry) continue;
-      w.from(shape_element(doc, link->name, "visual", k));
+      const XMLElement* shape = shape_element(doc, link->name, "visual", k);
+      w.from(shape);
       const std::string material =
           v->material ? c.materials[v->material_name.empty() ? link->name + "/" : v->material_name] : "";
-      if (!geometry(c, geometry_name("visual", v->name, k), *v->geometry, v->origin, true, material))
+      if (!geometry(c, geometry_name("visual", v->name, k), *v->geometry, v->origin, true, material,
+                    doc.is_capsule(shape)))
         return result;
     }
     w.from(doc.link(link->name));
@@ -437,15 +498,16 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
                   "        ");
     for (const auto& joint : joints) {
       if (joint->type == urdf::Joint::FLOATING) continue;
-      const Eigen::Vector3d axis = joint_axis(*joint), normal = normal_to(axis);
+      const Eigen::Vector3d axis = joint_axis(*joint), normal = connector_normal(*joint);
+      const std::string& a = attribute.at(joint->name);
       w.from(doc.joint(joint->name));
       if (joint->parent_link_name == link->name) {
         const urdf::Pose& o = joint->parent_to_joint_origin_transform;
         const Eigen::Quaterniond r = to_eigen(o.rotation);
-        w.connector(joint->name + "_parent", to_eigen(o.position), r * axis, r * normal, "        ");
+        w.connector(a + "_parent", to_eigen(o.position), r * axis, r * normal, "        ");
       }
       if (joint->child_link_name == link->name)
-        w.connector(joint->name + "_child", Eigen::Vector3d::Zero(), axis, normal, "        ");
+        w.connector(a + "_child", Eigen::Vector3d::Zero(), axis, normal, "        ");
     }
   }
   if (!world_root && !massless_root) {
@@ -457,19 +519,26 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     const std::string mate = mate_of(*joint);
     if (mate.empty()) continue;  // floating: a free body
     const XMLElement* element = doc.joint(joint->name);
+    const std::string& a = attribute.at(joint->name);
     w.from(element);
     const std::string parent =
         world_root && joint->parent_link_name == "world" ? "" : id(joint->parent_link_name) + ".";
-    const std::string connectors = "[" + parent + id(joint->name + "_parent") + ", " +
-                                   id(joint->child_link_name) + "." + id(joint->name + "_child") + "]";
-    w.line("    " + id(joint->name) + " is Physics3D.Interactions." + mate + ":");
+    const std::string connectors =
+        "[" + parent + id(a + "_parent") + ", " + id(joint->child_link_name) + "." + id(a + "_child") + "]";
+    const bool hinge = mate == "Physics3D.Interactions.Hinge";
+    w.line("    " + id(a) + " is " + mate + ":");
     w.line("        connectors: " + connectors);
+    if (a != joint->name && joint->name.find_first_of("\"\\") == std::string::npos)
+      w.line("        urdf_name is String: \"" + joint->name + "\"");
+    if (start.at(joint->name) != 0 && (hinge || mate == "Physics3D.Interactions.Prismatic"))
+      w.line(std::string("        ") + (hinge ? "initial_angle: " : "initial_position: ") +
+             num(start.at(joint->name)));
     const auto& limits = joint->limits;
     if ((joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC) && limits &&
         limits->lower < limits->upper) {
       w.from(UrdfDocument::child(element, "limit"));
-      w.line("    " + id(joint->name + "_limits") + " is Physics3D.Interactions." +
-             (mate == "Hinge" ? "RotationalRange" : "LinearRange") + ":");
+      w.line("    " + id(a + "_limits") + " is Physics3D.Interactions." +
+             (hinge ? "RotationalRange" : "LinearRange") + ":");
       w.line("        connectors: " + connectors);
       w.line("        start: " + num(limits->lower));
       w.line("        end: " + num(limits->upper));
@@ -477,10 +546,10 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     const double damping = joint->dynamics ? joint->dynamics->damping : 0,
                  friction = joint->dynamics ? joint->dynamics->friction : 0,
                  effort = limits ? limits->effort : 0, velocity = limits ? limits->velocity : 0;
-    if (mate != "Lock" && (damping > 0 || friction > 0 || effort > 0 || velocity > 0)) {
+    if (joint->type != urdf::Joint::FIXED && (damping > 0 || friction > 0 || effort > 0 || velocity > 0)) {
       w.from(UrdfDocument::child(element, joint->dynamics ? "dynamics" : "limit"));
-      w.line("    " + id(joint->name + "_properties") + " is Urdf.JointProperties:");
-      w.line("        mate: " + id(joint->name));
+      w.line("    " + id(a + "_properties") + " is Urdf.JointProperties:");
+      w.line("        mate: " + id(a));
       if (damping > 0) w.line("        damping: " + num(damping));
       if (friction > 0) w.line("        friction: " + num(friction));
       if (effort > 0) w.line("        effort: " + num(effort));
@@ -490,9 +559,9 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
   for (const auto& joint : joints) {
     if (!joint->mimic || robot->joints_.count(joint->mimic->joint_name) == 0) continue;
     w.from(UrdfDocument::child(doc.joint(joint->name), "mimic"));
-    w.line("    " + id(joint->name + "_mimic") + " is Urdf.Mimic:");
-    w.line("        follower: " + id(joint->name));
-    w.line("        leader: " + id(joint->mimic->joint_name));
+    w.line("    " + id(attribute.at(joint->name) + "_mimic") + " is Urdf.Mimic:");
+    w.line("        follower: " + id(attribute.at(joint->name)));
+    w.line("        leader: " + id(attribute.at(joint->mimic->joint_name)));
     w.line("        multiplier: " + num(joint->mimic->multiplier));
     w.line("        offset: " + num(joint->mimic->offset));
   }

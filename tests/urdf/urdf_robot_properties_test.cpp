@@ -1,6 +1,6 @@
 // What a URDF says beyond links and joints reaches MuJoCo: <dynamics> damping and friction, effort and
 // velocity limits on the motors a user adds, material colours, package:// meshes through Urdf.PackagePath,
-// floating joints; non-physical inertias are repaired with a warning; planar joints are located errors.
+// floating joints; non-physical inertias are repaired with a warning (planar joints: urdf_real_robots_test).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -197,16 +197,6 @@ TEST_F(UrdfRobotProperties, ColladaMeshIsALocatedError) {
               " of `arm.visual_0` is .dae; MuJoCo 2.2.2 reads OBJ, binary STL and MSH [mjcf-missing-asset]",
           0),
       0u)
-      << err;
-}
-
-TEST_F(UrdfRobotProperties, PlanarJointIsALocatedError) {
-  std::string urdf = arm_urdf();
-  urdf.replace(urdf.find("type=\"continuous\""), 17, "type=\"planar\"");
-  const fs::path path = robot("", urdf);
-  std::string err;
-  EXPECT_EQ(cli({path.string()}, &err), openplx::cli::kExitInputError);
-  EXPECT_EQ(err.rfind((dir_ / "arm.urdf").string() + ":13:3: error: joint `shoulder` is planar", 0), 0u)
       << err;
 }
 

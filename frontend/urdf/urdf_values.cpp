@@ -1,0 +1,144 @@
+// What urdfdom would swallow or misread, found in the DOM first: malformed numbers (urdfdom drops the
+// element, or the whole geometry, without a word), URDF 1.1 forms urdfdom 3.0.1 does not know (`quat_xyzw`
+// origins, `<capsule>`), and the blocks for other tools (`<transmission>`, `<mujoco>`, `<gazebo>`) that are
+// read by nobody here.
+#include <Eigen/Geometry>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+
+#include "frontend/urdf/urdf_document.h"
+
+namespace openplx::frontend {
+namespace {
+
+using tinyxml2::XMLElement;
+
+// Numeric attributes by element, with how many numbers each holds.
+const std::map<std::string, std::map<std::string, int>>& numeric_attributes() {
+  static const std::map<std::string, std::map<std::string, int>> table = {
+      {"origin", {{"xyz", 3}, {"rpy", 3}, {"quat_xyzw", 4}}},
+      {"axis", {{"xyz", 3}}},
+      {"mass", {{"value", 1}}},
+      {"inertia", {{"ixx", 1}, {"ixy", 1}, {"ixz", 1}, {"iyy", 1}, {"iyz", 1}, {"izz", 1}}},
+      {"box", {{"size", 3}}},
+      {"cylinder", {{"radius", 1}, {"length", 1}}},
+      {"capsule", {{"radius", 1}, {"length", 1}}},
+      {"sphere", {{"radius", 1}}},
+      {"mesh", {{"scale", 3}}},
+      {"color", {{"rgba", 4}}},
+      {"limit", {{"lower", 1}, {"upper", 1}, {"effort", 1}, {"velocity", 1}}},
+      {"dynamics", {{"damping", 1}, {"friction", 1}}},
+      {"mimic", {{"multiplier", 1}, {"offset", 1}}},
+      {"safety_controller",
+       {{"soft_lower_limit", 1}, {"soft_upper_limit", 1}, {"k_position", 1}, {"k_velocity", 1}}},
+      {"calibration", {{"rising", 1}, {"falling", 1}}},
+  };
+  return table;
+}
+
+// The numbers of `text`, or nullopt with the first word that is not a finite number in `bad`.
+std::optional<std::vector<double>> numbers(const std::string& text, std::string& bad) {
+  std::istringstream words(text);
+  std::vector<double> values;
+  for (std::string word; words >> word;) {
+    double v = 0;
+    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
+    if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) {
+      bad = word;
+      return std::nullopt;
+    }
+    values.push_back(v);
+  }
+  return values;
+}
+
+std::string exact(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", v);
+  return buffer;
+}
+
+// Roll, pitch, yaw (URDF's fixed-axis X, Y, Z order: R = Rz(yaw) Ry(pitch) Rx(roll)) of a rotation, from its
+// matrix so that no angle loses precision near the poles.
+Eigen::Vector3d rpy_of(const Eigen::Quaterniond& q) {
+  const Eigen::Matrix3d r = q.normalized().toRotationMatrix();
+  return {std::atan2(r(2, 1), r(2, 2)), std::atan2(-r(2, 0), std::hypot(r(0, 0), r(1, 0))),
+          std::atan2(r(1, 0), r(0, 0))};
+}
+
+}  // namespace
+
+bool UrdfDocument::check_values() {
+  bool changed = false;
+  std::vector<XMLElement*> stack{doc_.FirstChildElement("robot")};
+  while (!stack.empty()) {
+    XMLElement* e = stack.back();
+    stack.pop_back();
+    for (XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
+    const std::string tag = e->Name();
+    const bool top = e->Parent() == doc_.FirstChildElement("robot");
+    if (top && (tag == "transmission" || tag == "mujoco" || tag == "gazebo")) {
+      const char* what = tag == "transmission"
+                             ? "a ros_control transmission: no actuator was made from it (add motors to the "
+                               "joint's mate in OpenPLX)"
+                         : tag == "mujoco" ? "MuJoCo's own URDF compiler options, which do not apply to this "
+                                             "converter's output"
+                                           : "Gazebo settings";
+      findings_.push_back({false, offset_of(e), "<" + tag + "> was not read: it holds " + what, {}});
+      continue;
+    }
+    auto known = numeric_attributes().find(tag);
+    if (known == numeric_attributes().end()) continue;
+    for (const auto& [attribute, count] : known->second) {
+      const char* value = e->Attribute(attribute.c_str());
+      if (!value) continue;
+      std::string bad;
+      const std::optional<std::vector<double>> v = numbers(value, bad);
+      if (!v || static_cast<int>(v->size()) != count) {
+        findings_.push_back({true,
+                             offset_of(e),
+                             "<" + tag + "> " + attribute + "=\"" + value + "\" is not " +
+                                 (count == 1 ? "a number" : std::to_string(count) + " numbers") +
+                                 (v ? "" : " (`" + bad + "`)"),
+                             {}});
+      }
+    }
+    // URDF 1.1: an origin's rotation as a quaternion, x y z w. urdfdom 3.0.1 ignores it; it gets the same
+    // rotation as rpy.
+    if (tag == "origin" && e->Attribute("quat_xyzw")) {
+      std::string bad;
+      const std::optional<std::vector<double>> q = numbers(e->Attribute("quat_xyzw"), bad);
+      if (e->Attribute("rpy")) {
+        findings_.push_back({true, offset_of(e), "<origin> has both rpy and quat_xyzw; URDF allows one", {}});
+      } else if (q && q->size() == 4) {
+        const Eigen::Quaterniond rotation((*q)[3], (*q)[0], (*q)[1], (*q)[2]);
+        if (rotation.norm() < 1e-12) {
+          findings_.push_back({true, offset_of(e), "<origin> quat_xyzw is zero, which is no rotation", {}});
+        } else {
+          const Eigen::Vector3d rpy = rpy_of(rotation);
+          e->SetAttribute("rpy", (exact(rpy.x()) + " " + exact(rpy.y()) + " " + exact(rpy.z())).c_str());
+        }
+      }
+      e->DeleteAttribute("quat_xyzw");
+      changed = true;
+    }
+    // URDF 1.1 capsules: urdfdom reads the shape as a cylinder of the same radius and length (the length of
+    // its cylindrical part); the import makes it a capsule again.
+    if (tag == "capsule") {
+      e->SetName("cylinder");
+      capsules_.insert(e);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+bool UrdfDocument::is_capsule(const XMLElement* e) const {
+  return capsules_.count(e) > 0;
+}
+
+}  // namespace openplx::frontend
