@@ -29,8 +29,7 @@ int cli(const std::vector<std::string>& args, std::string* err = nullptr) {
 TEST(UrdfImport, EveryFailUrdfIsRejectedAtItsOwnLine) {
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"fail_pr2_desc_bracket.urdf",
-       ":9:7: error: Unable to parse component [}] to a double (while parsing a vector value) "
-       "[urdf-invalid]"},
+       ":9:7: error: <origin> rpy=\"0 0 1 }\" is not 3 numbers (`}`) [urdf-invalid]"},
       {"fail_pr2_desc_double.urdf",
        ":31:5: error: link 'fl_caster_rotation_link' is not unique. [urdf-invalid]"},
       {"fail_pr2_desc_double_joint.urdf",
