@@ -175,11 +175,19 @@ class Snapper {
                      " degrees apart; the simulation will pull them together");
   }
 
-  // Forces one undefined transform to the identity: a reference body first, else the first undefined
+  // Forces one undefined transform to what the model says: a reference body first, then a static body (it
+  // never moves, so assembly must not move it either: a URDF's massless root), else the first undefined
   // transform of the first unused mate (side 0's chain, then side 1's).
   bool force_one(const std::vector<int>& unused) {
     for (size_t i = 0; i < view_.nodes.size(); ++i) {
       if (!fixed_[i] && view_.nodes[i].reference) {
+        fixed_[i] = forced_[i] = true;
+        return true;
+      }
+    }
+    for (size_t i = 0; i < view_.nodes.size(); ++i) {
+      const FrameNode& n = view_.nodes[i];
+      if (!fixed_[i] && n.kind == FrameNode::Kind::Body && !n.body.dynamic) {
         fixed_[i] = forced_[i] = true;
         return true;
       }
