@@ -344,7 +344,8 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
   }
   for (const std::string& warning : warnings)
     result.findings.push_back({false, doc.offset_of(doc.robot()), "urdfdom: " + warning, {}});
-  if (!robot || !robot->getRoot()) {
+  // urdfdom also logs errors for parts it skips while still returning a robot: each is an error too.
+  if (!robot || !robot->getRoot() || !errors.empty()) {
     result.findings.push_back(doc.locate(errors));
     return result;
   }

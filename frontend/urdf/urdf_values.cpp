@@ -56,6 +56,18 @@ std::optional<std::vector<double>> numbers(const std::string& text, std::string&
   return values;
 }
 
+// The shapes a <geometry> can hold (URDF 1.1 included) and the attributes each requires.
+const std::map<std::string, std::vector<const char*>>& shapes() {
+  static const std::map<std::string, std::vector<const char*>> table = {
+      {"box", {"size"}},
+      {"cylinder", {"radius", "length"}},
+      {"capsule", {"radius", "length"}},
+      {"sphere", {"radius"}},
+      {"mesh", {"filename"}},
+  };
+  return table;
+}
+
 std::string exact(double v) {
   char buffer[40];
   std::snprintf(buffer, sizeof(buffer), "%.17g", v);
@@ -90,6 +102,29 @@ bool UrdfDocument::check_values() {
                                            : "Gazebo settings";
       findings_.push_back({false, offset_of(e), "<" + tag + "> was not read: it holds " + what, {}});
       continue;
+    }
+    // A <geometry> holds one shape with what it needs: urdfdom drops the whole <visual> or <collision>
+    // otherwise, without failing the robot.
+    if (tag == "geometry") {
+      const XMLElement* shape = e->FirstChildElement();
+      if (!shape) {
+        findings_.push_back({true, offset_of(e), "<geometry> holds no shape", {}});
+      } else if (!shapes().count(shape->Name())) {
+        findings_.push_back({true,
+                             offset_of(shape),
+                             "<" + std::string(shape->Name()) +
+                                 "> is not a URDF shape (box, cylinder, sphere, mesh, capsule)",
+                             {}});
+      } else {
+        for (const char* required : shapes().at(shape->Name())) {
+          if (!shape->Attribute(required)) {
+            findings_.push_back({true,
+                                 offset_of(shape),
+                                 "<" + std::string(shape->Name()) + "> has no " + required + " attribute",
+                                 {}});
+          }
+        }
+      }
     }
     auto known = numeric_attributes().find(tag);
     if (known == numeric_attributes().end()) continue;

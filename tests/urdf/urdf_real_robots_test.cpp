@@ -122,8 +122,9 @@ TEST(UrdfPlanar, LimitIsIgnoredWithALocatedWarning) {
   EXPECT_FALSE(fs::exists(dir / "strict.xml"));
 }
 
-// A one-link robot with `value` in place of one of its numbers.
-std::string robot_with(const std::string& visual_origin, const std::string& mass = "1") {
+// A one-link robot with the given visual origin attributes, mass and visual shape.
+std::string robot_with(const std::string& visual_origin, const std::string& mass = "1",
+                       const std::string& shape = "<box size=\"0.1 0.1 0.1\"/>") {
   return "<?xml version=\"1.0\"?>\n"
          "<robot name=\"bad\">\n"
          "  <link name=\"base\">\n"
@@ -131,15 +132,15 @@ std::string robot_with(const std::string& visual_origin, const std::string& mass
          mass +
          "\"/><inertia ixx=\"0.1\" iyy=\"0.1\" izz=\"0.1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial>\n"
          "    <visual><origin " +
-         visual_origin +
-         "/><geometry><box size=\"0.1 0.1 0.1\"/></geometry></visual>\n"
+         visual_origin + "/><geometry>" + shape +
+         "</geometry></visual>\n"
          "  </link>\n"
          "</robot>\n";
 }
 
-// urdfdom drops a <visual> whose origin does not parse, with exit 0 and no word. Every malformed number is
-// an error at its element; nothing is written.
-TEST(UrdfValues, MalformedNumbersAreLocatedErrors) {
+// urdfdom drops a <visual> whose origin does not parse, or whose shape lacks what it needs, with exit 0 and
+// no word. Every malformed number and every incomplete shape is an error at its element; nothing is written.
+TEST(UrdfValues, MalformedValuesAreLocatedErrors) {
   const openplx::testing::ScratchDir dir;
   const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       {"xyz=\"abc 1 2\"", "1", ":5:13: error: <origin> xyz=\"abc 1 2\" is not 3 numbers (`abc`)"},
@@ -150,6 +151,20 @@ TEST(UrdfValues, MalformedNumbersAreLocatedErrors) {
   for (const auto& [origin, mass, expected] : cases) {
     SCOPED_TRACE(origin + " " + mass);
     std::ofstream(dir / "bad.urdf") << robot_with(origin, mass);
+    std::string err;
+    EXPECT_EQ(cli({(dir / "bad.urdf").string(), "-o", (dir / "bad.xml").string()}, &err),
+              openplx::cli::kExitInputError);
+    EXPECT_EQ(err.rfind((dir / "bad.urdf").string() + expected, 0), 0u) << err;
+    EXPECT_FALSE(fs::exists(dir / "bad.xml"));
+  }
+  const std::vector<std::pair<std::string, std::string>> shapes = {
+      {"<sphere/>", ":5:44: error: <sphere> has no radius attribute"},
+      {"<mesh/>", ":5:44: error: <mesh> has no filename attribute"},
+      {"<cone radius=\"1\"/>", ":5:44: error: <cone> is not a URDF shape"},
+  };
+  for (const auto& [shape, expected] : shapes) {
+    SCOPED_TRACE(shape);
+    std::ofstream(dir / "bad.urdf") << robot_with("xyz=\"0 0 0\"", "1", shape);
     std::string err;
     EXPECT_EQ(cli({(dir / "bad.urdf").string(), "-o", (dir / "bad.xml").string()}, &err),
               openplx::cli::kExitInputError);
