@@ -904,12 +904,25 @@ class SystemBuilder {
 
 }  // namespace
 
+// Where an object is declared, as the user sees it: an attribute a bundle model declares (a suspension's
+// `mate`, a wheel's `rim_alignment_mate`) is reported at the user's declaration of the instance holding it,
+// the nearest enclosing attribute declared outside the bundles.
 frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id) {
-  const fe::Object& obj = graph.at(id);
-  if (obj.owner == fe::kNoObject) return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
-  const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
-  if (!slot) return {};
-  return slot->declaration->member->range;
+  auto in_bundle = [](const fe::ModelInfo* m) { return m && m->doc && m->doc->bundle; };
+  fe::SourceRange first;
+  for (fe::ObjectId at = id; at != fe::kNoObject;) {
+    const fe::Object& obj = graph.at(at);
+    if (obj.owner == fe::kNoObject) {
+      const fe::SourceRange root = obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
+      return in_bundle(obj.type) && at != id ? first : root;
+    }
+    const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
+    if (!slot) return first;
+    if (at == id) first = slot->declaration->member->range;
+    if (!in_bundle(slot->declared_in)) return slot->declaration->member->range;
+    at = obj.owner;
+  }
+  return first;
 }
 
 ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,
