@@ -24,6 +24,13 @@ void Lowering::emit_actuators(Element& root) {
       emit_distance_interaction(root, actuators, i);
       continue;
     }
+    if (i.kind == K::Steering) {
+      emit_steering(root, i);
+      continue;
+    }
+    if ((i.kind == K::LinearRange || i.kind == K::RotationalRange) && i.start == -sn::kInf &&
+        i.end == sn::kInf)
+      continue;  // no limit either way: nothing to express
     if (i.mate < 0) {
       warn(i.where, "`" + i.path +
                         "` acts on connectors that no mate joins (or on a drivetrain it cannot "

@@ -40,6 +40,25 @@ void Lowering::emit_joints(Element& body, int node, int m) {
     case sn::MateType::Ball:
       joint("ball", "", 0.0);
       break;
+    case sn::MateType::Suspension: {
+      // Travel along the suspension's direction (connector 0's normal unless the suspension says otherwise),
+      // then steering about it, then spin about main_axis: MuJoCo turns each joint's axis by the joints
+      // before it, so the spin axis steers with the wheel. The connector frames coincide at rest.
+      const double sign = side == 1 ? 1.0 : -1.0;
+      const sn::Connector& chassis = view_.connectors[mate.connectors[0]];
+      const Eigen::Vector3d along0 =
+          mate.travel.isZero() ? Eigen::Vector3d::UnitX()
+                               : Eigen::Vector3d(chassis.local.rotation.inverse() * mate.travel.normalized());
+      const Eigen::Vector3d along = sign * (c.local.rotation * along0);
+      if (!travel_held_rigid(mate, node)) {
+        Element* travel = joint("slide", ".travel", 0.0, along);
+        if (mate.travel_stiffness > 0) travel->set("stiffness", mate.travel_stiffness);
+        if (mate.travel_damping > 0) travel->set("damping", mate.travel_damping);
+      }
+      if (mate.steerable) joint("hinge", ".steering", 0.0, along);
+      joint("hinge", ".spin", 0.0);
+      break;
+    }
     case sn::MateType::Planar: {  // MuJoCo's URDF importer's names; the connector's x is the _TX direction
       const Eigen::Vector3d tx = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitX());
       const Eigen::Vector3d ty = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitY());
@@ -51,6 +70,20 @@ void Lowering::emit_joints(Element& body, int node, int m) {
     default:
       break;
   }
+}
+
+// A suspension's travel is a slide with the spring and damper as joint stiffness and damping (MuJoCo's
+// Euler integrates joint damping implicitly, stiffness explicitly). A spring too stiff for the step (ω h >
+// 0.5 on the wheel's mass: AGX's default 1e8 N/m is one) would make explicit integration blow up; its
+// travel is held rigid instead, which is what such a spring does to within m g / k, and said so.
+bool Lowering::travel_held_rigid(const sn::Mate& mate, int node) {
+  const double k = mate.travel_stiffness, mass = view_.nodes[node].body.mass;
+  if (!(k > 0 && mass > 0 && options_.timestep * std::sqrt(k / mass) > 0.5)) return false;
+  warn(mate.where, "`" + mate.path + ".spring_constant` (" + number(k) + " N/m on " + number(mass) +
+                       " kg) is stiffer than MuJoCo integrates at a " + number(options_.timestep) +
+                       " s step; the travel was held rigid (its static deflection, m g / k = " +
+                       number(mass * 9.81 / k) + " m, is lost)");
+  return true;
 }
 
 // Flexibility and dissipation of a mate's constrained degrees of freedom: tree joints are exactly rigid in

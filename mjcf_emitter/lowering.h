@@ -106,6 +106,7 @@ class Lowering {
 
   // ----------------------------------------------------------------------------------- joints.cpp
   void emit_joints(Element& body, int node, int m);
+  bool travel_held_rigid(const sn::Mate& mate, int node);
   void warn_mate_softness(const sn::Mate& mate, bool loop);
   void apply_friction(Element& joint, const sn::Mate& mate, const sn::MateFriction& friction,
                       const char* attribute);
@@ -142,6 +143,7 @@ class Lowering {
   // -------------------------------------------------------------------------------- actuators.cpp
   void emit_actuators(Element& root);
   void emit_distance_interaction(Element& root, Element& actuators, const sn::Interaction1D& i);
+  void emit_steering(Element& root, const sn::Interaction1D& i);  // steering.cpp
   void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
   void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
                    std::map<Element*, double>& dampings);
@@ -259,6 +261,12 @@ class Lowering {
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
   std::map<int, std::string> distance_ranges_;                  // DistanceRange/Motor -> its tendon
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
+  struct SteeringElements {
+    std::string angle_equality;  // holds the left wheel's steering angle (the input)
+    std::string left_joint;      // the left wheel's steering hinge (the output)
+    double fit_error = 0;        // rad: the linkage's quartic fit, over the steering range
+  };
+  std::map<int, SteeringElements> steering_;  // Steering interaction -> its MuJoCo elements
 };
 
 }  // namespace openplx::mjcf

@@ -153,6 +153,8 @@ std::string_view to_string(Quantity quantity) {
       return "tendon_limit_force";
     case Quantity::DistanceTarget:
       return "distance_target";
+    case Quantity::EqualityTarget:
+      return "equality_target";
     case Quantity::GearRatio:
       return "gear_ratio";
     case Quantity::GearSelect:

@@ -57,6 +57,8 @@ enum class Quantity {
                // gear -n, 0 neutral (inactive). `initial_vector` = forward ratios then reverse ratios, `low`
                // = how many are forward, `high` = 1 when it has a neutral gear, `initial` = the first gear.
                // Selecting re-anchors like GearRatio, with the reverse ratios negated
+  EqualityTarget,  // Equality (a joint equality holding joint1 alone at a value: a kinematic steering angle):
+                   // value = qpos0 of joint1 + polycoef[0]; writing sets polycoef[0] (Real, readable)
   // --- outputs
   JointPosition,      // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
   JointVelocity,      // Joint: d->qvel[jnt_dofadr[id]], times `sign`

@@ -164,6 +164,13 @@ SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem,
       return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, name(i.path));
     }
   }
+  if (auto steering = steering_.find(k); steering != steering_.end() && stem == "Angle") {
+    if (b.input) {  // the left wheel's steering angle, held by the angle equality
+      return mapped(std::move(b), Quantity::EqualityTarget, MjObject::Equality,
+                    steering->second.angle_equality);
+    }
+    return mapped(std::move(b), Quantity::JointPosition, MjObject::Joint, steering->second.left_joint);
+  }
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) return bind_enabled(std::move(b), k);
   const bool effort = any_of(stem, {"Torque1D", "Force1D"});
   const bool range = any_of(stem, {"TorqueRange", "ForceRange"});

@@ -493,6 +493,10 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       m->eq_data[id * mjNEQDATA] = values[0] - m->tendon_length0[m->eq_obj1id[id]];
       stale = true;  // equality rows are built in mj_step1
       return;
+    case Quantity::EqualityTarget:
+      m->eq_data[id * mjNEQDATA] = values[0] - m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]];
+      stale = true;
+      return;
     case Quantity::GearRatio: {
       if (values[0] == 0) throw SignalError("input `" + s.info.name + "` got a zero gear ratio");
       reanchor_gear(id, values[0]);
@@ -649,6 +653,9 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       return;
     case Quantity::DistanceTarget:
       out[0] = m->eq_data[id * mjNEQDATA] + m->tendon_length0[m->eq_obj1id[id]];
+      return;
+    case Quantity::EqualityTarget:
+      out[0] = m->eq_data[id * mjNEQDATA] + m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]];
       return;
     case Quantity::TendonLength:
       out[0] = d->ten_length[id];

@@ -10,6 +10,7 @@
 #include "snap/attribute_reader.h"
 #include "snap/read_drivetrain.h"
 #include "snap/read_parameters.h"
+#include "snap/read_vehicles.h"
 
 namespace openplx::snap {
 namespace {
@@ -110,6 +111,9 @@ class SystemBuilder {
       }
     }
     if (fe::ModelInfo* m = program.loaded_model("Urdf.Planar")) mate_kinds_.emplace_back(m, MateType::Planar);
+    suspension_mate_ = program.loaded_model("Vehicles.Suspensions.SingleMate.Interactions.Base");
+    steering_trait_ = program.loaded_model("Vehicles.Suspensions.Properties.Steering");
+    steering_interaction_ = program.loaded_model("Vehicles.Steering.Kinematic.Interactions.Base");
   }
 
   ResolvedSystem build(fe::ObjectId root) {
@@ -128,6 +132,7 @@ class SystemBuilder {
       visit(item.object, item.node, stack, false);
     }
     apply_kinematic_control();
+    resolve_redirects();
     for (Mate& mate : view_.mates) resolve_connectors(mate);
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
     resolve_drivetrain();
@@ -388,6 +393,8 @@ class SystemBuilder {
     for (const auto& [model, kind] : kinds1d_) {
       if (ev_.graph().at(id).type->is_subtype_of(model)) interaction.kind = kind;
     }
+    if (steering_interaction_ && ev_.graph().at(id).type->is_subtype_of(steering_interaction_))
+      interaction.kind = Interaction1D::Kind::Steering;
     view_.interactions.push_back(std::move(interaction));
   }
 
@@ -456,6 +463,10 @@ class SystemBuilder {
       c.leader = mate_index(object(c.object, "leader"));
     }
     for (JointProperties& p : view_.joint_properties) p.mate = mate_index(object(p.object, "mate"));
+    for (Interaction1D& i : view_.interactions) {
+      if (i.kind == Interaction1D::Kind::Steering)
+        read_steering(in_, i.object, i, [&](fe::ObjectId mate) { return mate_index(mate); });
+    }
     for (Interaction1D& i : view_.interactions) {
       const fe::Object& obj = ev_.graph().at(i.object);
       const bool drivetrain_motor = is(obj, motor1d_) || is(obj, torque_motor1d_);
@@ -756,6 +767,10 @@ class SystemBuilder {
                  (adaptive_trait_ && type->is_subtype_of(adaptive_trait_));
     c.where = where_of(id);
     c.local = connector_frame(id, c.where);
+    if (in_tree) {
+      if (const fe::ObjectId parent = object(id, "redirected_parent"); parent != fe::kNoObject)
+        redirects_.emplace_back(static_cast<int>(view_.connectors.size()), parent);
+    }
     connector_of_[id] = static_cast<int>(view_.connectors.size());
     if (in_tree) view_.order.emplace_back(false, static_cast<int>(view_.connectors.size()));
     view_.connectors.push_back(std::move(c));
@@ -806,7 +821,40 @@ class SystemBuilder {
       mate.enable_snap = snap->bool_value;
     }
     read_mate_parameters(in_, id, mate);
+    if (suspension_mate_ && type->is_subtype_of(suspension_mate_))
+      read_suspension(in_, steering_trait_, id, mate);
     view_.mates.push_back(std::move(mate));
+  }
+
+  // A redirected connector (RedirectedMateConnector, 0.31's ConnectorProperties.Redirected) is written in its
+  // owner's frame and attached to `redirected_parent`: it moves to that body, its frame re-expressed through
+  // the declared transforms between them (a wheel's rim at the wheel's origin). A body that is not below the
+  // owner, or whose placement SNAP has yet to find, cannot take it.
+  void resolve_redirects() {
+    for (const auto& [k, body] : redirects_) {
+      Connector& c = view_.connectors[k];
+      auto it = node_of_.find(body);
+      if (it == node_of_.end() || it->second == c.owner) continue;
+      Transform chain;  // the body's frame in the owner's
+      bool below = false, declared = true;
+      for (int n = it->second; n != kWorld; n = view_.nodes[n].parent) {
+        if (n == c.owner) {
+          below = true;
+          break;
+        }
+        declared = declared && view_.nodes[n].defined;
+        chain = natives::affine_compose(view_.nodes[n].local, chain);
+      }
+      if (!below || !declared) {
+        sink_.report(fe::DiagCode::MjcfUnmapped, c.where,
+                     "`" + c.path + ".redirected_parent` is " +
+                         (below ? "a body whose placement is not declared" : "not a body below its owner") +
+                         "; the connector stays on its owner");
+        continue;
+      }
+      c.owner = it->second;
+      c.local = natives::affine_compose(natives::affine_inverse(chain), c.local);
+    }
   }
 
   // Connectors are references to objects anywhere in the tree (or to the World singleton).
@@ -856,6 +904,9 @@ class SystemBuilder {
   fe::ModelInfo* adaptive_ = nullptr;
   fe::ModelInfo* adaptive_trait_ = nullptr;  // 0.30's ConnectorProperties.Adaptive
   fe::ModelInfo* mate_ = nullptr;
+  fe::ModelInfo* suspension_mate_ = nullptr;       // Vehicles SingleMate suspension joint
+  fe::ModelInfo* steering_trait_ = nullptr;        // Vehicles.Suspensions.Properties.Steering
+  fe::ModelInfo* steering_interaction_ = nullptr;  // Vehicles kinematic steering interaction
   fe::ModelInfo* rigid_body_ = nullptr;
   fe::ModelInfo* contact_geometry_ = nullptr;
   fe::ModelInfo* visual_geometry_ = nullptr;
@@ -898,6 +949,7 @@ class SystemBuilder {
   std::unordered_map<fe::ObjectId, int>
       mate_of_;  // see mate_index  // Urdf.PackagePath: package name -> folder
   std::unordered_map<fe::ObjectId, int> node_of_;
+  std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;
 };
@@ -975,6 +1027,8 @@ std::string mate_type_name(MateType type) {
       return "ConstantVelocity";
     case MateType::Planar:
       return "Planar";
+    case MateType::Suspension:
+      return "Suspension";
     case MateType::Other:
       return "Mate";
   }

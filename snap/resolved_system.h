@@ -131,6 +131,7 @@ struct Interaction1D {
     TorqueMotor,
     DistanceRange,
     DistanceMotor,
+    Steering,  // Vehicles kinematic steering: holds two steerable suspensions' angles by its mechanism
     Other
   };
   ObjectRef object;
@@ -149,6 +150,9 @@ struct Interaction1D {
   std::optional<double> gain;                    // velocity motors
   std::optional<double> target_speed;            // velocity motors
   double default_effort = 0;                     // force/torque motors: default_force / default_torque
+  int steered[2] = {-1, -1};                     // Steering: the left and right suspension mates
+  std::string mechanism;                         // Steering: "Ackermann", "BellCrank", "RackAndPinion"
+  double knuckle_angle = 0, knuckle_length = 0;  // Steering: knuckle arm angle from the axle (rad), length
   frontend::SourceRange where;
 };
 
@@ -197,7 +201,18 @@ struct Connector {
   frontend::SourceRange where;
 };
 
-enum class MateType { Lock, Hinge, Prismatic, Cylindrical, Ball, Distance, ConstantVelocity, Planar, Other };
+enum class MateType {
+  Lock,
+  Hinge,
+  Prismatic,
+  Cylindrical,
+  Ball,
+  Distance,
+  ConstantVelocity,
+  Planar,
+  Suspension,  // Vehicles SingleMate: travel (with spring and damper), steering when steerable, spin
+  Other
+};
 
 // A mate's stiffness and damping in one of its six directions.
 struct DofCompliance {
@@ -232,6 +247,11 @@ struct Mate {
   std::string dissipation_type;
   std::array<DofCompliance, 6> dofs;  // per kDirections
   MateFriction friction, friction_translational, friction_rotational;
+  // Suspension: travel along `travel` (connectors[0]'s owner frame; zero: that connector's normal) with a
+  // spring and damper, rotation about it when steerable, spin about main_axis.
+  bool steerable = false;
+  Eigen::Vector3d travel = Eigen::Vector3d::Zero();
+  double travel_stiffness = 0, travel_damping = 0;
   frontend::SourceRange where;
 };
 

@@ -1,0 +1,37 @@
+// Vehicles bundle parts the resolved system carries: SingleMate suspensions (travel, spring, steering) and
+// kinematic steering mechanisms.
+#pragma once
+
+#include "snap/attribute_reader.h"
+#include "snap/resolved_system.h"
+
+namespace openplx::snap {
+
+// A Vehicles.Suspensions.SingleMate.Interactions.Base mate `id`: its travel direction (the owning
+// suspension's chassis_local_direction, in the chassis body's frame), whether the suspension has the
+// Properties.Steering trait, and a LinearSpringDamper's spring and damper on the travel.
+void read_suspension(AttributeReader& in, const frontend::ModelInfo* steering_trait, frontend::ObjectId id,
+                     Mate& mate);
+
+// A Vehicles.Steering.Kinematic.Interactions.Base interaction: its mechanism and knuckle geometry, and the
+// mates of the suspensions its owning Steering.Kinematic.Base steers (`mate_of` maps a mate object to its
+// index, -1 when none).
+template <typename MateIndex>
+void read_steering(AttributeReader& in, frontend::ObjectId id, Interaction1D& steering, MateIndex&& mate_of) {
+  steering.kind = Interaction1D::Kind::Steering;
+  const std::string& type = in.type_name(id);
+  for (const char* mechanism : {"Ackermann", "BellCrank", "RackAndPinion"}) {
+    if (type.find(mechanism) != std::string::npos) steering.mechanism = mechanism;
+  }
+  steering.knuckle_angle = in.real(id, "knuckle_angle");
+  steering.knuckle_length = in.real(id, "knuckle_length");
+  const frontend::ObjectId system = in.graph().at(id).owner;
+  if (system == frontend::kNoObject) return;
+  const char* sides[2] = {"left_suspension", "right_suspension"};
+  for (int side = 0; side < 2; ++side) {
+    const frontend::ObjectId suspension = in.object(system, sides[side]);
+    if (suspension != frontend::kNoObject) steering.steered[side] = mate_of(in.object(suspension, "mate"));
+  }
+}
+
+}  // namespace openplx::snap
