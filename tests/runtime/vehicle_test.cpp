@@ -1,0 +1,146 @@
+// Vehicles: SingleMate suspensions (travel with spring and damper, steering, spin) and kinematic steering,
+// measured against the physics: a suspension settles at its static deflection m g / k, the steering input
+// holds the left wheel's angle, and the right wheel follows the Ackermann trapezoid (its tie rod keeps its
+// length). Warnings about bundle parts point at the user's lines.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <fstream>
+
+#include "openplx/runtime/simulation.h"
+#include "tests/support/scratch_dir.h"
+
+namespace {
+
+namespace rt = openplx::runtime;
+
+// A chassis held by the world (static) with two front wheels on suspensions, clear of its box (MuJoCo lets
+// a child touch a parent welded to the world); `spring` is the suspensions' spring block, `steered` adds the
+// steering trait and an Ackermann steering.
+std::string car(const std::string& spring, bool steered) {
+  std::string text =
+      "Chassis is Physics3D.Bodies.RigidBody:\n"
+      "    is_dynamic: false\n"
+      "    box is Physics3D.Geometries.Box:\n"
+      "        size: {3, 0.6, 0.4}\n"
+      "    fl is Physics3D.Interactions.MateConnector:\n"
+      "        position: {1.2, 0.8, -0.2}\n"
+      "        main_axis: {0, 1, 0}\n"
+      "        normal: {0, 0, 1}\n"
+      "    fr is Physics3D.Interactions.MateConnector:\n"
+      "        position: {1.2, -0.8, -0.2}\n"
+      "        main_axis: {0, 1, 0}\n"
+      "        normal: {0, 0, 1}\n"
+      "Wheel is Vehicles.Wheels.Base:\n"
+      "    rim becomes Vehicles.Wheels.Rim:\n"
+      "        radius: 0.35\n"
+      "        width: 0.25\n"
+      "        rotational_axis: {0, 1, 0}\n"
+      "        inertia.mass: 20\n"
+      "Scene is Physics3D.System:\n"
+      "    chassis is Chassis\n"
+      "    front_left is Wheel\n"
+      "    front_right is Wheel\n";
+  for (const char* side : {"left", "right"}) {
+    text +=
+        std::string("    ") + side + "_suspension is Vehicles.Suspensions.SingleMate.LinearSpringDamper:\n";
+    if (steered) text += "        with Vehicles.Suspensions.Properties.Steering\n";
+    text += std::string("        chassis_connector: chassis.") + (side[0] == 'l' ? "fl" : "fr") + "\n";
+    text += std::string("        attachment_connector: front_") + side + ".connector\n";
+    text += spring;
+  }
+  if (steered) {
+    text +=
+        "    steering is Vehicles.Steering.Kinematic.Ackermann:\n"
+        "        left_suspension: left_suspension\n"
+        "        right_suspension: right_suspension\n";
+  }
+  return text;
+}
+
+double qpos(rt::Simulation& sim, const char* joint) {
+  const mjModel* m = sim.model();
+  const int j = mj_name2id(m, mjOBJ_JOINT, joint);
+  EXPECT_GE(j, 0) << joint;
+  return j < 0 ? 0.0 : sim.data()->qpos[m->jnt_qposadr[j]];
+}
+
+// A 20 kg wheel hanging on a 20 kN/m spring sags m g / k = 9.81 mm. The damper is critical (2 sqrt(k m)),
+// so after 2 s (over 30 time constants) the travel rests there; MuJoCo's joint stiffness is the spring
+// itself, so only Euler's O(h) error remains: 0.5 %.
+TEST(VehicleSuspension, SettlesAtItsStaticDeflection) {
+  const openplx::testing::ScratchDir dir;
+  const double k = 2e4, m = 20, b = 2 * std::sqrt(k * m);
+  std::ofstream(dir / "car.openplx") << car(
+      "        mate.spring_constant.stiffness: " + std::to_string(k) +
+          "\n        mate.spring_damping.damping_constant: " + std::to_string(b) + "\n",
+      false);
+  rt::Simulation sim = rt::Simulation::load((dir / "car.openplx").string());
+  sim.advance(2.0);
+  const double sag = -m * 9.81 / k;
+  EXPECT_NEAR(qpos(sim, "left_suspension.mate.travel"), sag, 5e-3 * std::abs(sag));
+  EXPECT_NEAR(qpos(sim, "right_suspension.mate.travel"), sag, 5e-3 * std::abs(sag));
+  EXPECT_LT(std::abs(sim.data()->qvel[sim.model()->jnt_dofadr[mj_name2id(sim.model(), mjOBJ_JOINT,
+                                                                         "left_suspension.mate.travel")]]),
+            1e-6);
+  // Without Properties.Steering the steering rotation is locked: no such joint.
+  EXPECT_LT(mj_name2id(sim.model(), mjOBJ_JOINT, "left_suspension.mate.steering"), 0);
+  EXPECT_GE(mj_name2id(sim.model(), mjOBJ_JOINT, "left_suspension.mate.spin"), 0);
+}
+
+// AGX's default suspension spring (1e8 N/m) on a 20 kg wheel has a period of 2.8 ms, under two steps: it is
+// held rigid, with a warning at the user's suspension line (not in the bundle).
+TEST(VehicleSuspension, TooStiffASpringIsHeldRigidAndSaidAtTheUsersLine) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "car.openplx") << car("", false);
+  rt::Simulation sim = rt::Simulation::load((dir / "car.openplx").string());
+  EXPECT_LT(mj_name2id(sim.model(), mjOBJ_JOINT, "left_suspension.mate.travel"), 0);
+  int stiff = 0;
+  for (const std::string& w : sim.warnings()) {
+    EXPECT_EQ(w.find("bundles/"), std::string::npos) << w;  // every warning at the user's file
+    if (w.find("is stiffer than MuJoCo integrates") == std::string::npos) continue;
+    ++stiff;
+    EXPECT_NE(w.find((dir / "car.openplx").string() + ":2"), std::string::npos) << w;  // lines 22, 26
+  }
+  EXPECT_EQ(stiff, 2);
+}
+
+// AGX's steering test: 0.5 on the steering input gives 0.5 on its output within 1e-6 after 1 s (0 before).
+// The right wheel follows the trapezoid: kingpins 1.6 m apart, knuckle arms of 0.16 m pointing rearward and
+// 25° inward (knuckle_angle -2.007 rad), a tie rod between their ends whose length the steering must keep;
+// MuJoCo's quartic fit to that linkage is within 6e-3 rad over the steering range, so the tie rod keeps its
+// length to l · 6e-3 = 1 mm.
+TEST(VehicleSteering, AckermannFollowsItsInputAndKeepsTheTieRod) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "car.openplx") << car(
+      "        mate.spring_constant.stiffness: 20000\n        mate.spring_damping.damping_constant: 1265\n",
+      true);
+  rt::Simulation sim = rt::Simulation::load((dir / "car.openplx").string());
+  rt::Output out = sim.output("steering.interaction.steering_angle_output");
+  EXPECT_EQ(out.real(), 0.0);
+  sim.input("steering.interaction.steering_angle_input").set(0.5);
+  sim.advance(1.0);
+  EXPECT_NEAR(out.real(), 0.5, 1e-6);
+  const double left = qpos(sim, "left_suspension.mate.steering");
+  const double right = qpos(sim, "right_suspension.mate.steering");
+  EXPECT_NEAR(left, 0.5, 1e-6);
+  EXPECT_GT(right, 0.2);   // both turn left ...
+  EXPECT_LT(right, left);  // ... the inner (left) wheel more: Ackermann
+  // The tie rod: arm ends at straight ahead and now, in the plane (x forward, y left).
+  const double w = 1.6, l = 0.16, beta = 2.007 - M_PI / 2;
+  const Eigen::Vector2d kl(0, w / 2), kr(0, -w / 2);
+  const Eigen::Vector2d arm_l(-l * std::cos(beta), -l * std::sin(beta)),
+      arm_r(-l * std::cos(beta), l * std::sin(beta));
+  const double tie = ((kl + arm_l) - (kr + arm_r)).norm();
+  const Eigen::Vector2d pl = kl + Eigen::Rotation2Dd(left) * arm_l,
+                        pr = kr + Eigen::Rotation2Dd(right) * arm_r;
+  EXPECT_NEAR((pl - pr).norm(), tie, 1e-3);
+  sim.input("steering.interaction.steering_angle_input").set(-0.3);
+  sim.advance(1.0);
+  EXPECT_NEAR(out.real(), -0.3, 1e-6);
+  EXPECT_LT(qpos(sim, "right_suspension.mate.steering"), -0.3);  // turning right, the right wheel is inner
+}
+
+}  // namespace
