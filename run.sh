@@ -21,6 +21,9 @@ build/tools/openplx-sim samples/cart_pole.openplx --time 1 --set push=5 --at 0.5
 echo "== openplx-sim samples/drivetrain_machine.openplx   (engine, clutch, gearbox, differential: throttle, then brake)"
 build/tools/openplx-sim samples/drivetrain_machine.openplx --time 6 --set throttle=0.5 --at 4 throttle=0 \
   --at 4 clutch=false --at 4 brake_left=1 --at 4 brake_right=1 --print position --print velocity --print engine_rpm
+echo "== openplx-sim samples/vehicle_circle.openplx   (suspensions and Ackermann steering: a circle)"
+build/tools/openplx-sim samples/vehicle_circle.openplx --time 10 --set steering=0.3 --set speed=8 \
+  --print position --print steering_angle
 echo "== openplx2mjcf tests/corpus/urdf/bullet3/r2d2.urdf --check   (a URDF robot through urdfdom, checked in MuJoCo)"
 build/tools/openplx2mjcf tests/corpus/urdf/bullet3/r2d2.urdf -o build/samples/r2d2.xml --check
 echo "== openplx-sim samples/urdf_pantilt.openplx   (a URDF robot extended in OpenPLX with motors and outputs)"

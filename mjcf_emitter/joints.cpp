@@ -122,6 +122,10 @@ void Lowering::apply_friction(Element& joint, const sn::Mate& mate, const sn::Ma
 Element* Lowering::joint_for(int mate, bool rotational) {
   auto it = joint_of_mate_.find(mate);
   if (it == joint_of_mate_.end()) return nullptr;
+  // A suspension's rotational degree of freedom for motors, ranges and signals is its wheel's spin (the
+  // steering angle belongs to the steering mechanism).
+  const bool suspension = view_.mates[mate].type == sn::MateType::Suspension;
+  if (suspension && rotational) return it->second.back();
   for (Element* j : it->second) {
     const bool hinge = *j->get("type") == "hinge";
     if (hinge == rotational && *j->get("type") != "ball") return j;

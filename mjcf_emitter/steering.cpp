@@ -64,21 +64,23 @@ SteeringFit fit_linkage(double w, double l, double beta) {
     }
   }
   SteeringFit fit;
-  Eigen::MatrixXd a(samples.size(), 5);
+  // No constant term: straight ahead is straight ahead, so the equality holds at the start.
+  Eigen::MatrixXd a(samples.size(), 4);
   Eigen::VectorXd b(samples.size());
   double reach_pos = 0, reach_neg = 0;
   for (size_t s = 0; s < samples.size(); ++s) {
     const double x = samples[s].first;
-    for (int p = 0; p < 5; ++p) a(static_cast<int>(s), p) = std::pow(x, p);
+    for (int p = 1; p < 5; ++p) a(static_cast<int>(s), p - 1) = std::pow(x, p);
     b(static_cast<int>(s)) = samples[s].second;
     reach_pos = std::max(reach_pos, x);
     reach_neg = std::min(reach_neg, x);
   }
   fit.low = reach_neg;
   fit.high = reach_pos;
-  fit.coefficients = a.colPivHouseholderQr().solve(b);
+  fit.coefficients.tail<4>() = a.colPivHouseholderQr().solve(b);
   for (size_t s = 0; s < samples.size(); ++s) {
-    const double error = std::abs((a.row(static_cast<int>(s)) * fit.coefficients)(0) - samples[s].second);
+    const double error =
+        std::abs((a.row(static_cast<int>(s)) * fit.coefficients.tail<4>())(0) - samples[s].second);
     fit.max_error = std::max(fit.max_error, error);
   }
   return fit;

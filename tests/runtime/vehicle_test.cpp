@@ -143,4 +143,43 @@ TEST(VehicleSteering, AckermannFollowsItsInputAndKeepsTheTieRod) {
   EXPECT_LT(qpos(sim, "right_suspension.mate.steering"), -0.3);  // turning right, the right wheel is inner
 }
 
+// samples/vehicle_circle: held at a steering angle of 0.3 rad with its rear wheels spun at 8 rad/s, the car
+// drives a circle. Its centre of turning lies on the rear axle's line at L / tan(left angle) + w / 2 from the
+// rear axle's middle (Ackermann: the inner, left, wheel sets it), so the chassis centre, L / 2 ahead of the
+// axle, circles at sqrt((L / tan 0.3 + w / 2)² + (L / 2)²) = 8.95 m (L = 2.5 m, w = 1.6 m). Tyres slip a
+// little sideways at 0.9 m/s² of lateral acceleration: 5 %. The fitted circle must also be a circle (every
+// point within 2 % of its radius) and the car must come round (more than one lap in 25 s of fitting).
+TEST(VehicleSample, DrivesACircleAtItsSteeringRadius) {
+  rt::Simulation sim = rt::Simulation::load(std::string(OPENPLX_SAMPLES_DIR) + "/vehicle_circle.openplx");
+  sim.input("steering").set(0.3);
+  sim.input("speed").set(8.0);
+  sim.advance(3.0);  // sags onto its springs and gets up to speed
+  std::vector<Eigen::Vector2d> points;
+  for (int k = 0; k < 250; ++k) {
+    sim.advance(0.1);
+    const Eigen::Vector3d p = sim.output("position").vec3();
+    points.emplace_back(p.x(), p.y());
+  }
+  // Kasa's algebraic circle fit: x² + y² + D x + E y + F = 0 in the least-squares sense.
+  Eigen::MatrixXd a(points.size(), 3);
+  Eigen::VectorXd b(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    a.row(static_cast<int>(k)) << points[k].x(), points[k].y(), 1.0;
+    b(static_cast<int>(k)) = -points[k].squaredNorm();
+  }
+  const Eigen::Vector3d def = a.colPivHouseholderQr().solve(b);
+  const Eigen::Vector2d centre = -def.head<2>() / 2;
+  const double radius = std::sqrt(centre.squaredNorm() - def(2));
+  const double expected = std::hypot(2.5 / std::tan(0.3) + 0.8, 1.25);
+  EXPECT_NEAR(radius, expected, 0.05 * expected);
+  double swept = 0;
+  for (size_t k = 0; k < points.size(); ++k) {
+    EXPECT_NEAR((points[k] - centre).norm(), radius, 0.02 * radius);
+    if (k == 0) continue;
+    const Eigen::Vector2d u = points[k - 1] - centre, v = points[k] - centre;
+    swept += std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+  }
+  EXPECT_GT(swept, 2 * M_PI);  // counter-clockwise: a left turn
+}
+
 }  // namespace
