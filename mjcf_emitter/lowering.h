@@ -144,6 +144,8 @@ class Lowering {
   void emit_actuators(Element& root);
   void emit_distance_interaction(Element& root, Element& actuators, const sn::Interaction1D& i);
   void emit_steering(Element& root, const sn::Interaction1D& i);  // steering.cpp
+  void emit_lidars();                                             // lidar.cpp
+  SignalBinding bind_lidar(SignalBinding b, int lidar);
   void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
   void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
                    std::map<Element*, double>& dampings);
@@ -267,6 +269,7 @@ class Lowering {
     double fit_error = 0;        // rad: the linkage's quartic fit, over the steering range
   };
   std::map<int, SteeringElements> steering_;  // Steering interaction -> its MuJoCo elements
+  std::map<int, std::vector<std::string>> lidar_sensors_;  // lidar -> its rangefinders, ray order
 };
 
 }  // namespace openplx::mjcf

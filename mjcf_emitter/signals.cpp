@@ -8,6 +8,7 @@ namespace openplx::mjcf {
 // has one. Outputs without a sensor (controls, ranges, constants) are computed by the runtime.
 void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   sensors_ = &root.add("sensor");
+  emit_lidars();
   for (const sn::Signal& s : view_.signals)
     out.push_back(s.composite ? SignalBinding{} : s.imu ? bind_imu(s) : bind(s));
   // Composites after their parts.
@@ -142,6 +143,8 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
     case Source::Coupling:
       if (stem == "RelativeVelocity1D") b.unit = "rad/s";  // drivetrain parts join rotating shafts
       return bind_coupling(std::move(b), stem, s.source);
+    case Source::Lidar:
+      return bind_lidar(std::move(b), s.source);
     case Source::Other:
       break;
   }

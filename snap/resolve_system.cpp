@@ -10,6 +10,7 @@
 #include "snap/attribute_reader.h"
 #include "snap/read_drivetrain.h"
 #include "snap/read_parameters.h"
+#include "snap/read_lidar.h"
 #include "snap/read_vehicles.h"
 
 namespace openplx::snap {
@@ -67,7 +68,7 @@ class SystemBuilder {
     // 1-D bodies and motors, and power sources without a torque law (InfinitePowerSource).
     for (const char* name :
          {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
-          "Vehicles.TrackSystem.Connections.Base", "Sensors.LidarLogic", "Physics1D.Bodies.LinearBody",
+          "Vehicles.TrackSystem.Connections.Base", "Physics1D.Bodies.LinearBody",
           "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.InfinitePowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
@@ -112,6 +113,7 @@ class SystemBuilder {
     }
     if (fe::ModelInfo* m = program.loaded_model("Urdf.Planar")) mate_kinds_.emplace_back(m, MateType::Planar);
     suspension_mate_ = program.loaded_model("Vehicles.Suspensions.SingleMate.Interactions.Base");
+    lidar_ = program.loaded_model("Sensors.LidarLogic");
     steering_trait_ = program.loaded_model("Vehicles.Suspensions.Properties.Steering");
     steering_interaction_ = program.loaded_model("Vehicles.Steering.Kinematic.Interactions.Base");
   }
@@ -239,6 +241,9 @@ class SystemBuilder {
         view_.collision_filters.push_back({id, ev_.graph().path(id), {}, {}, where_of(id)});
         filter_groups_.emplace_back(object(id, "group1"), object(id, "group2"));
         break;
+      case Role::Kind::Lidar:
+        view_.lidars.push_back(read_lidar(in_, id, where_of(id), sink_));
+        break;
       case Role::Kind::None:
         break;
     }
@@ -266,7 +271,8 @@ class SystemBuilder {
       Mimic,
       JointProperties,
       PackagePath,
-      CollisionFilter
+      CollisionFilter,
+      Lidar
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
@@ -287,6 +293,7 @@ class SystemBuilder {
                 : sub(joint_properties_) ? K::JointProperties
                 : sub(package_path_)     ? K::PackagePath
                 : sub(collision_filter_) ? K::CollisionFilter
+                : sub(lidar_)            ? K::Lidar
                 : sub(shaft_)            ? K::Shaft
                 : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_) ||
                         sub(gearbox_) || sub(converter_) || sub(mean_value_engine_) || sub(empirical_engine_)
@@ -635,6 +642,10 @@ class SystemBuilder {
       auto it = index.find(connector);
       view_.signals[signal].sensor_fields[field].connector = it == index.end() ? -1 : it->second;
     }
+    for (Lidar& lidar : view_.lidars) {
+      auto it = index.find(lidar.attachment);
+      lidar.connector = it == index.end() ? -1 : it->second;
+    }
   }
 
   // A composite's parts are signals of the tree, found by object.
@@ -674,6 +685,7 @@ class SystemBuilder {
     add(SignalSource::Body, view_.nodes, [](const FrameNode& n) { return n.kind == FrameNode::Kind::Body; });
     add(SignalSource::Mate, view_.mates, all);
     add(SignalSource::Interaction, view_.interactions, all);
+    add(SignalSource::Lidar, view_.lidars, all);
   }
 
   fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
@@ -905,6 +917,7 @@ class SystemBuilder {
   fe::ModelInfo* adaptive_trait_ = nullptr;  // 0.30's ConnectorProperties.Adaptive
   fe::ModelInfo* mate_ = nullptr;
   fe::ModelInfo* suspension_mate_ = nullptr;       // Vehicles SingleMate suspension joint
+  fe::ModelInfo* lidar_ = nullptr;                 // Sensors.LidarLogic
   fe::ModelInfo* steering_trait_ = nullptr;        // Vehicles.Suspensions.Properties.Steering
   fe::ModelInfo* steering_interaction_ = nullptr;  // Vehicles kinematic steering interaction
   fe::ModelInfo* rigid_body_ = nullptr;

@@ -157,7 +157,7 @@ struct Interaction1D {
 };
 
 // What an OpenPLX signal's `source` is in this system.
-enum class SignalSource { None, Interaction, Mate, Body, Shaft, Connector, Coupling, Other };
+enum class SignalSource { None, Interaction, Mate, Body, Shaft, Connector, Coupling, Lidar, Other };
 
 // An OpenPLX input or output signal of the tree.
 struct Signal {
@@ -189,6 +189,19 @@ struct Signal {
   };
   bool imu = false;
   std::vector<SensorField> sensor_fields;
+  frontend::SourceRange where;
+};
+
+// A Sensors lidar: rangefinder rays from its connector (directions in the connector's frame: z = main_axis,
+// x = normal), and the Gaussian distance noise MuJoCo can record.
+struct Lidar {
+  ObjectRef object;
+  std::string path;
+  ObjectRef attachment;  // its mate_connector_attachment
+  int connector = -1;    // index into ResolvedSystem::connectors, -1 when none
+  std::vector<Eigen::Vector3d> rays;
+  bool default_pattern = false;  // no ray pattern given: one ray along the normal
+  double noise_mean = 0, noise_deviation = 0, noise_slope = 0;
   frontend::SourceRange where;
 };
 
@@ -388,6 +401,7 @@ struct ResolvedSystem {
   std::vector<Shaft> shafts;
   std::vector<DriveCoupling> couplings;
   std::vector<JointCoupling> joint_couplings;
+  std::vector<Lidar> lidars;
   std::vector<JointProperties> joint_properties;
   std::vector<CollisionFilter> collision_filters;
   Gravity gravity;
