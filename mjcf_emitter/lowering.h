@@ -268,7 +268,7 @@ class Lowering {
     std::string left_joint;      // the left wheel's steering hinge (the output)
     double fit_error = 0;        // rad: the linkage's quartic fit, over the steering range
   };
-  std::map<int, SteeringElements> steering_;  // Steering interaction -> its MuJoCo elements
+  std::map<int, SteeringElements> steering_;               // Steering interaction -> its MuJoCo elements
   std::map<int, std::vector<std::string>> lidar_sensors_;  // lidar -> its rangefinders, ray order
 };
 

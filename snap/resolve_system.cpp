@@ -9,8 +9,8 @@
 #include "frontend/urdf/package_uri.h"
 #include "snap/attribute_reader.h"
 #include "snap/read_drivetrain.h"
-#include "snap/read_parameters.h"
 #include "snap/read_lidar.h"
+#include "snap/read_parameters.h"
 #include "snap/read_vehicles.h"
 
 namespace openplx::snap {
