@@ -31,6 +31,7 @@ Emitted Lowering::run() {
   Element& world = root.add("worldbody");
   world_ = &world;
   emit_world_geoms(world);
+  emit_terrains();
   emit_bodies(world);
   emit_loop_closures(root);
   emit_distance_mates(root);

@@ -67,9 +67,9 @@ class SystemBuilder {
     // Models with no MuJoCo counterpart get a warning instead of vanishing: terrain, tracks, lidars, linear
     // 1-D bodies and motors, and power sources without a torque law (InfinitePowerSource).
     for (const char* name :
-         {"Terrain.Terrain", "Terrain.Shovel", "Vehicles.TrackSystem.Base",
-          "Vehicles.TrackSystem.Connections.Base", "Physics1D.Bodies.LinearBody",
-          "Physics1D.Interactions.LinearVelocityMotor", "DriveTrain.InfinitePowerSource"}) {
+         {"Terrain.Shovel", "Vehicles.TrackSystem.Base", "Vehicles.TrackSystem.Connections.Base",
+          "Physics1D.Bodies.LinearBody", "Physics1D.Interactions.LinearVelocityMotor",
+          "DriveTrain.InfinitePowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
     const std::pair<const char*, Geometry::Shape> shapes[] = {
@@ -114,6 +114,7 @@ class SystemBuilder {
     if (fe::ModelInfo* m = program.loaded_model("Urdf.Planar")) mate_kinds_.emplace_back(m, MateType::Planar);
     suspension_mate_ = program.loaded_model("Vehicles.Suspensions.SingleMate.Interactions.Base");
     lidar_ = program.loaded_model("Sensors.LidarLogic");
+    terrain_ = program.loaded_model("Terrain.Terrain");
     steering_trait_ = program.loaded_model("Vehicles.Suspensions.Properties.Steering");
     steering_interaction_ = program.loaded_model("Vehicles.Steering.Kinematic.Interactions.Base");
   }
@@ -244,6 +245,20 @@ class SystemBuilder {
       case Role::Kind::Lidar:
         view_.lidars.push_back(read_lidar(in_, id, where_of(id), sink_));
         break;
+      case Role::Kind::Terrain: {
+        Terrain t;
+        t.object = id;
+        t.path = ev_.graph().path(id);
+        t.parent = enclosing;
+        read_transform(id, t.local);
+        t.num_x = static_cast<int>(real(id, "num_elements_x"));
+        t.num_y = static_cast<int>(real(id, "num_elements_y"));
+        t.element_size = real(id, "element_size");
+        t.max_depth = real(id, "max_depth");
+        t.where = where_of(id);
+        view_.terrains.push_back(std::move(t));
+        return;  // its material and soil have no MuJoCo counterpart (warned by the emitter)
+      }
       case Role::Kind::None:
         break;
     }
@@ -272,7 +287,8 @@ class SystemBuilder {
       JointProperties,
       PackagePath,
       CollisionFilter,
-      Lidar
+      Lidar,
+      Terrain
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
@@ -294,6 +310,7 @@ class SystemBuilder {
                 : sub(package_path_)     ? K::PackagePath
                 : sub(collision_filter_) ? K::CollisionFilter
                 : sub(lidar_)            ? K::Lidar
+                : sub(terrain_)          ? K::Terrain
                 : sub(shaft_)            ? K::Shaft
                 : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_) ||
                         sub(gearbox_) || sub(converter_) || sub(mean_value_engine_) || sub(empirical_engine_)
@@ -918,6 +935,7 @@ class SystemBuilder {
   fe::ModelInfo* mate_ = nullptr;
   fe::ModelInfo* suspension_mate_ = nullptr;       // Vehicles SingleMate suspension joint
   fe::ModelInfo* lidar_ = nullptr;                 // Sensors.LidarLogic
+  fe::ModelInfo* terrain_ = nullptr;               // Terrain.Terrain
   fe::ModelInfo* steering_trait_ = nullptr;        // Vehicles.Suspensions.Properties.Steering
   fe::ModelInfo* steering_interaction_ = nullptr;  // Vehicles kinematic steering interaction
   fe::ModelInfo* rigid_body_ = nullptr;

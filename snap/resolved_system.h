@@ -205,6 +205,18 @@ struct Lidar {
   frontend::SourceRange where;
 };
 
+// A Terrain.Terrain: a grid of num_x x num_y heights spaced element_size around its frame's origin, its
+// surface at z = 0 of that frame, max_depth deep.
+struct Terrain {
+  ObjectRef object;
+  std::string path;
+  int parent = kWorld;  // the enclosing node
+  Transform local;      // relative to the parent
+  int num_x = 0, num_y = 0;
+  double element_size = 0, max_depth = 0;
+  frontend::SourceRange where;
+};
+
 struct Connector {
   ObjectRef object;
   int owner = kWorld;  // node index or kWorld
@@ -402,6 +414,7 @@ struct ResolvedSystem {
   std::vector<DriveCoupling> couplings;
   std::vector<JointCoupling> joint_couplings;
   std::vector<Lidar> lidars;
+  std::vector<Terrain> terrains;
   std::vector<JointProperties> joint_properties;
   std::vector<CollisionFilter> collision_filters;
   Gravity gravity;
