@@ -59,6 +59,30 @@ void Lowering::emit_joints(Element& body, int node, int m) {
       joint("hinge", ".spin", 0.0);
       break;
     }
+    case sn::MateType::ElasticTire: {
+      // The tire on its rim: a slide along and a hinge about each of the connector's axes (z the axle), each
+      // with the wheel's stiffness and damping for that direction; a direction too stiff for the step is
+      // held rigid (tire_direction_rigid).
+      const double sign = side == 1 ? 1.0 : -1.0;
+      const char* axes[3] = {".axial", ".radial_normal", ".radial_cross"};
+      const Eigen::Vector3d unit[3] = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                                       Eigen::Vector3d::UnitY()};
+      for (int rotational = 0; rotational < 2; ++rotational) {
+        for (int k = 0; k < 3; ++k) {
+          const sn::DofCompliance& dof = mate.dofs[3 * rotational + k];
+          if (tire_direction_rigid(mate, node, dof, rotational != 0, axes[k])) continue;
+          Element* j =
+              joint(rotational ? "hinge" : "slide", std::string(rotational ? ".turn" : ".shift") + axes[k],
+                    0.0, sign * (c.local.rotation * unit[k]));
+          if (dof.stiffness > 0) j->set("stiffness", dof.stiffness);
+          const double damping = dof.damping_constant  ? *dof.damping_constant
+                                 : dof.relaxation_time ? *dof.relaxation_time * dof.stiffness
+                                                       : 0.0;
+          if (damping > 0) j->set("damping", damping);
+        }
+      }
+      break;
+    }
     case sn::MateType::Planar: {  // MuJoCo's URDF importer's names; the connector's x is the _TX direction
       const Eigen::Vector3d tx = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitX());
       const Eigen::Vector3d ty = (side == 1 ? 1.0 : -1.0) * (c.local.rotation * Eigen::Vector3d::UnitY());
@@ -83,6 +107,22 @@ bool Lowering::travel_held_rigid(const sn::Mate& mate, int node) {
                        " kg) is stiffer than MuJoCo integrates at a " + number(options_.timestep) +
                        " s step; the travel was held rigid (its static deflection, m g / k = " +
                        number(mass * 9.81 / k) + " m, is lost)");
+  return true;
+}
+
+// A tire direction whose spring is too stiff for explicit integration at this step (ω h > 0.5 with the
+// tire's mass, or its largest principal moment for rotations) is held rigid instead, with a warning; so is
+// one without stiffness (a rigid direction).
+bool Lowering::tire_direction_rigid(const sn::Mate& mate, int node, const sn::DofCompliance& dof,
+                                    bool rotational, const char* axis) {
+  if (!(dof.stiffness > 0)) return true;
+  const sn::BodyProperties& body = view_.nodes[node].body;
+  const double inertia = rotational ? body.inertia.diagonal().maxCoeff() : body.mass;
+  if (!(inertia > 0) || options_.timestep * std::sqrt(dof.stiffness / inertia) <= 0.5) return false;
+  warn(mate.where, "`" + mate.path + "`'s " + (rotational ? "rotational" : "translational") + " stiffness " +
+                       number(dof.stiffness) + (rotational ? " N m/rad" : " N/m") + " (" + (axis + 1) +
+                       ") is stiffer than MuJoCo integrates at a " + number(options_.timestep) +
+                       " s step; that direction of the tire was held rigid");
   return true;
 }
 

@@ -107,6 +107,8 @@ class Lowering {
   // ----------------------------------------------------------------------------------- joints.cpp
   void emit_joints(Element& body, int node, int m);
   bool travel_held_rigid(const sn::Mate& mate, int node);
+  bool tire_direction_rigid(const sn::Mate& mate, int node, const sn::DofCompliance& dof, bool rotational,
+                            const char* axis);
   void warn_mate_softness(const sn::Mate& mate, bool loop);
   void apply_friction(Element& joint, const sn::Mate& mate, const sn::MateFriction& friction,
                       const char* attribute);

@@ -15,6 +15,7 @@ int Lowering::edge_cost(const sn::Mate& mate, bool carries_interactions) {
     case sn::MateType::Cylindrical:
     case sn::MateType::Planar:  // only a tree joint can express it
     case sn::MateType::Suspension:
+    case sn::MateType::ElasticTire:
       return 1;
     case sn::MateType::Lock:
       return 2;
@@ -32,6 +33,7 @@ bool Lowering::joint_mapped(const sn::Mate& mate) const {
     case sn::MateType::Cylindrical:
     case sn::MateType::Planar:
     case sn::MateType::Suspension:
+    case sn::MateType::ElasticTire:
     case sn::MateType::Ball:
     case sn::MateType::Lock:
       return true;

@@ -34,4 +34,10 @@ void read_steering(AttributeReader& in, frontend::ObjectId id, Interaction1D& st
   }
 }
 
+// A Vehicles.Wheels.ElasticWheel system `id` makes its tire_mate (disabled in the bundle: AGX replaces it by
+// its wheel joint) the tire's compliant joint: enabled, of type ElasticTire, with the wheel's flexibility and
+// dissipation per direction (the mate's main axis is the axle: axial = along/around main, radial = along/
+// around normal and cross).
+void read_elastic_wheel(AttributeReader& in, frontend::ObjectId id, Mate& tire_mate);
+
 }  // namespace openplx::snap

@@ -115,6 +115,7 @@ class SystemBuilder {
     suspension_mate_ = program.loaded_model("Vehicles.Suspensions.SingleMate.Interactions.Base");
     lidar_ = program.loaded_model("Sensors.LidarLogic");
     terrain_ = program.loaded_model("Terrain.Terrain");
+    elastic_wheel_ = program.loaded_model("Vehicles.Wheels.ElasticWheel");
     steering_trait_ = program.loaded_model("Vehicles.Suspensions.Properties.Steering");
     steering_interaction_ = program.loaded_model("Vehicles.Steering.Kinematic.Interactions.Base");
   }
@@ -136,6 +137,7 @@ class SystemBuilder {
     }
     apply_kinematic_control();
     resolve_redirects();
+    resolve_elastic_wheels();
     for (Mate& mate : view_.mates) resolve_connectors(mate);
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
     resolve_drivetrain();
@@ -886,6 +888,16 @@ class SystemBuilder {
     }
   }
 
+  void resolve_elastic_wheels() {
+    if (!elastic_wheel_) return;
+    for (const FrameNode& n : view_.nodes) {
+      if (n.kind != FrameNode::Kind::System || !ev_.graph().at(n.object).type->is_subtype_of(elastic_wheel_))
+        continue;
+      const int m = mate_index(object(n.object, "tire_mate"));
+      if (m >= 0) read_elastic_wheel(in_, n.object, view_.mates[m]);
+    }
+  }
+
   // Connectors are references to objects anywhere in the tree (or to the World singleton).
   void resolve_connectors(Mate& mate) {
     const fe::Value* list = ev_.value(mate.object, "connectors");
@@ -936,6 +948,7 @@ class SystemBuilder {
   fe::ModelInfo* suspension_mate_ = nullptr;       // Vehicles SingleMate suspension joint
   fe::ModelInfo* lidar_ = nullptr;                 // Sensors.LidarLogic
   fe::ModelInfo* terrain_ = nullptr;               // Terrain.Terrain
+  fe::ModelInfo* elastic_wheel_ = nullptr;         // Vehicles.Wheels.ElasticWheel
   fe::ModelInfo* steering_trait_ = nullptr;        // Vehicles.Suspensions.Properties.Steering
   fe::ModelInfo* steering_interaction_ = nullptr;  // Vehicles kinematic steering interaction
   fe::ModelInfo* rigid_body_ = nullptr;
@@ -1060,6 +1073,8 @@ std::string mate_type_name(MateType type) {
       return "Planar";
     case MateType::Suspension:
       return "Suspension";
+    case MateType::ElasticTire:
+      return "ElasticTire";
     case MateType::Other:
       return "Mate";
   }

@@ -235,7 +235,8 @@ enum class MateType {
   Distance,
   ConstantVelocity,
   Planar,
-  Suspension,  // Vehicles SingleMate: travel (with spring and damper), steering when steerable, spin
+  Suspension,   // Vehicles SingleMate: travel (with spring and damper), steering when steerable, spin
+  ElasticTire,  // Vehicles ElasticWheel's tire_mate: all six directions free, each with its spring and damper
   Other
 };
 

@@ -241,7 +241,8 @@ Residual mate_residual(const Mate& mate, const Transform& frame0, const Transfor
   Residual r;
   switch (mate.type) {
     case MateType::Lock:
-    case MateType::Suspension:  // assembled at rest: travel, steering and spin at zero
+    case MateType::Suspension:   // assembled at rest: travel, steering and spin at zero
+    case MateType::ElasticTire:  // at rest: undeflected
       r.distance = deviation.position.norm();
       r.angle = rotation_angle(deviation.rotation);
       break;

@@ -143,6 +143,50 @@ TEST(VehicleSteering, AckermannFollowsItsInputAndKeepsTheTieRod) {
   EXPECT_LT(qpos(sim, "right_suspension.mate.steering"), -0.3);  // turning right, the right wheel is inner
 }
 
+// An elastic wheel's tire is its own body on six compliant joints to the rim (a slide along and a hinge about
+// the axle and two radii, each with the wheel's stiffness, default 300 kN/m and 300 kN m/rad, and damping):
+// hanging on a static hub it sags m g / k = 30 x 9.81 / 3e5 = 0.981 mm (1 %: Euler's O(h) on a spring of
+// period 63 ms), and it turns with the rim when a motor spins the axle (its torsional spring carries it:
+// 5 rad/s to 1e-3 after 1 s).
+TEST(VehicleWheel, ElasticTireHangsAtItsStiffnessAndTurnsWithTheRim) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "wheel.openplx") << "Hub is Physics3D.Bodies.RigidBody:\n"
+                                          "    is_dynamic: false\n"
+                                          "    axle is Physics3D.Interactions.MateConnector:\n"
+                                          "        main_axis: {0, 1, 0}\n"
+                                          "        normal: {0, 0, 1}\n"
+                                          "Tyre is Vehicles.Wheels.ElasticWheel:\n"
+                                          "    rim becomes Vehicles.Wheels.Rim:\n"
+                                          "        radius: 0.3\n"
+                                          "        width: 0.2\n"
+                                          "        rotational_axis: {0, 1, 0}\n"
+                                          "        inertia.mass: 10\n"
+                                          "    tire becomes Vehicles.Wheels.Tire:\n"
+                                          "        outer_radius: 0.4\n"
+                                          "        inner_radius: 0.3\n"
+                                          "        width: 0.25\n"
+                                          "        rotational_axis: {0, 1, 0}\n"
+                                          "        inertia.mass: 30\n"
+                                          "Scene is Physics3D.System:\n"
+                                          "    hub is Hub\n"
+                                          "    wheel is Tyre\n"
+                                          "    axle is Physics3D.Interactions.Hinge:\n"
+                                          "        connectors: [hub.axle, wheel.connector]\n"
+                                          "    spin is Physics3D.Interactions.RotationalVelocityMotor:\n"
+                                          "        connectors: axle.connectors\n"
+                                          "        target_speed: 0\n"
+                                          "    tire_position is Physics3D.Signals.Position3DOutput:\n"
+                                          "        source: wheel.tire\n"
+                                          "    tire_spin is Physics3D.Signals.AngularVelocity3DOutput:\n"
+                                          "        source: wheel.tire\n";
+  rt::Simulation sim = rt::Simulation::load((dir / "wheel.openplx").string());
+  sim.advance(2.0);
+  EXPECT_NEAR(sim.output("tire_position").vec3().z(), -30 * 9.81 / 3e5, 0.01 * 30 * 9.81 / 3e5);
+  sim.input("spin.target_angular_velocity_input").set(5.0);
+  sim.advance(1.0);
+  EXPECT_NEAR(sim.output("tire_spin").vec3().y(), 5.0, 1e-3);
+}
+
 // samples/vehicle_circle: held at a steering angle of 0.3 rad with its rear wheels spun at 8 rad/s, the car
 // drives a circle. Its centre of turning lies on the rear axle's line at L / tan(left angle) + w / 2 from the
 // rear axle's middle (Ackermann: the inner, left, wheel sets it), so the chassis centre, L / 2 ahead of the
