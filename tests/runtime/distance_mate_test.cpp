@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "openplx/runtime/simulation.h"
@@ -12,6 +13,7 @@
 namespace {
 
 namespace rt = openplx::runtime;
+namespace fs = std::filesystem;
 
 const char kModel[] =
     "Bob is Physics3D.Bodies.RigidBody:\n"
@@ -92,31 +94,39 @@ TEST(DistanceRange, IsARope) {
 
 namespace {
 
+// A 2 kg slider on a rail along x, 1 m from an anchor, and a DistanceMotor between them at 0.5 m/s within
+// ±`effort` N.
+fs::path slider_pushed_within(const openplx::testing::ScratchDir& dir, int effort) {
+  const std::string e = std::to_string(effort);
+  std::ofstream(dir / "motor.openplx")
+      << "Slider is Physics3D.Bodies.RigidBody:\n"
+         "    inertia.mass: 2\n"
+         "    ball is Physics3D.Geometries.Sphere:\n"
+         "        radius: 0.05\n"
+         "    c is Physics3D.Interactions.MateConnector:\n"
+         "        main_axis: Math.Vec3.X_AXIS()\n"
+         "Scene is Physics3D.System:\n"
+         "    anchor is Physics3D.Interactions.MateConnector:\n"
+         "        main_axis: Math.Vec3.X_AXIS()\n"
+         "    rail is Physics3D.Interactions.MateConnector:\n"
+         "        position: {1, 0, 0}\n"
+         "        main_axis: Math.Vec3.X_AXIS()\n"
+         "    slider is Slider\n"
+         "    slide is Physics3D.Interactions.Prismatic:\n"
+         "        connectors: [rail, slider.c]\n"
+         "    push is Physics3D.Interactions.DistanceMotor:\n"
+         "        connectors: [anchor, slider.c]\n"
+         "        target_speed: 0.5\n"
+      << "        min_effort: -" << e << "\n        max_effort: " << e << "\n";
+  return dir / "motor.openplx";
+}
+
 // A DistanceMotor on a 2 kg slider along x, 1 m from its anchor: the distance grows at the target 0.5 m/s
 // (a servo: within a few steps, then exactly); its speed input reverses it; its force output is the push.
 TEST(DistanceMotor, DrivesTheDistanceRate) {
   const openplx::testing::ScratchDir dir;
-  std::ofstream(dir / "motor.openplx") << "Slider is Physics3D.Bodies.RigidBody:\n"
-                                          "    inertia.mass: 2\n"
-                                          "    ball is Physics3D.Geometries.Sphere:\n"
-                                          "        radius: 0.05\n"
-                                          "    c is Physics3D.Interactions.MateConnector:\n"
-                                          "        main_axis: Math.Vec3.X_AXIS()\n"
-                                          "Scene is Physics3D.System:\n"
-                                          "    anchor is Physics3D.Interactions.MateConnector:\n"
-                                          "        main_axis: Math.Vec3.X_AXIS()\n"
-                                          "    rail is Physics3D.Interactions.MateConnector:\n"
-                                          "        position: {1, 0, 0}\n"
-                                          "        main_axis: Math.Vec3.X_AXIS()\n"
-                                          "    slider is Slider\n"
-                                          "    slide is Physics3D.Interactions.Prismatic:\n"
-                                          "        connectors: [rail, slider.c]\n"
-                                          "    push is Physics3D.Interactions.DistanceMotor:\n"
-                                          "        connectors: [anchor, slider.c]\n"
-                                          "        target_speed: 0.5\n"
-                                          "        min_effort: -1000\n"
-                                          "        max_effort: 1000\n";
-  rt::Simulation sim = rt::Simulation::load((dir / "motor.openplx").string());
+  const fs::path file = slider_pushed_within(dir, 1000);
+  rt::Simulation sim = rt::Simulation::load(file.string());
   ASSERT_EQ(sim.warnings().size(), 1u);  // the servo's
   EXPECT_NE(sim.warnings().front().find("is a velocity servo here"), std::string::npos);
   rt::Output speed = sim.output("slide.velocity_output");
@@ -135,27 +145,8 @@ TEST(DistanceMotor, DrivesTheDistanceRate) {
 // The push stays within the effort range: 100 N on 2 kg gains 0.1 m/s per 2 ms step until the target.
 TEST(DistanceMotor, PushesWithinItsEffortRange) {
   const openplx::testing::ScratchDir dir;
-  std::ofstream(dir / "motor.openplx") << "Slider is Physics3D.Bodies.RigidBody:\n"
-                                          "    inertia.mass: 2\n"
-                                          "    ball is Physics3D.Geometries.Sphere:\n"
-                                          "        radius: 0.05\n"
-                                          "    c is Physics3D.Interactions.MateConnector:\n"
-                                          "        main_axis: Math.Vec3.X_AXIS()\n"
-                                          "Scene is Physics3D.System:\n"
-                                          "    anchor is Physics3D.Interactions.MateConnector:\n"
-                                          "        main_axis: Math.Vec3.X_AXIS()\n"
-                                          "    rail is Physics3D.Interactions.MateConnector:\n"
-                                          "        position: {1, 0, 0}\n"
-                                          "        main_axis: Math.Vec3.X_AXIS()\n"
-                                          "    slider is Slider\n"
-                                          "    slide is Physics3D.Interactions.Prismatic:\n"
-                                          "        connectors: [rail, slider.c]\n"
-                                          "    push is Physics3D.Interactions.DistanceMotor:\n"
-                                          "        connectors: [anchor, slider.c]\n"
-                                          "        target_speed: 0.5\n"
-                                          "        min_effort: -100\n"
-                                          "        max_effort: 100\n";
-  rt::Simulation sim = rt::Simulation::load((dir / "motor.openplx").string());
+  const fs::path file = slider_pushed_within(dir, 100);
+  rt::Simulation sim = rt::Simulation::load(file.string());
   rt::Output speed = sim.output("slide.velocity_output");
   rt::Output force = sim.output("push.force_output");
   sim.step();
