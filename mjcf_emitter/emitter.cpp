@@ -19,6 +19,11 @@ Emitted Lowering::run() {
       .set("fusestatic", "false")
       .set("discardvisual", "false");
   root.add("option").set("timestep", options_.timestep).set("gravity", gravity()).set("integrator", "Euler");
+  // Track links touch wheels and ground in many places at once: room for 16 contacts (64 constraint rows)
+  // per link beyond MuJoCo 2.2.2's defaults (100 contacts, 500 rows), which would otherwise drop contacts.
+  int links = 0;
+  for (const sn::TrackSystem& t : view_.tracks) links += std::max(0, t.link_count);
+  if (links > 0) root.add("size").set("njmax", 500 + 64 * links).set("nconmax", 100 + 16 * links);
   for (const sn::Unsupported& u : view_.unsupported) {
     warn(u.where, "`" + u.path + "` is a " + u.type +
                       ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
@@ -34,6 +39,7 @@ Emitted Lowering::run() {
   emit_terrains();
   emit_bodies(world);
   emit_loop_closures(root);
+  emit_tracks(root);
   emit_distance_mates(root);
   emit_drivetrain(root);
   emit_joint_couplings(root);

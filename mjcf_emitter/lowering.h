@@ -148,6 +148,7 @@ class Lowering {
   void emit_steering(Element& root, const sn::Interaction1D& i);  // steering.cpp
   void emit_lidars();                                             // lidar.cpp
   void emit_terrains();                                           // terrain.cpp
+  void emit_tracks(Element& root);                                // tracks.cpp
   SignalBinding bind_lidar(SignalBinding b, int lidar);
   void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
   void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,

@@ -67,8 +67,7 @@ class SystemBuilder {
     // Models with no MuJoCo counterpart get a warning instead of vanishing: terrain, tracks, lidars, linear
     // 1-D bodies and motors, and power sources without a torque law (InfinitePowerSource).
     for (const char* name :
-         {"Terrain.Shovel", "Vehicles.TrackSystem.Base", "Vehicles.TrackSystem.Connections.Base",
-          "Physics1D.Bodies.LinearBody", "Physics1D.Interactions.LinearVelocityMotor",
+         {"Terrain.Shovel", "Physics1D.Bodies.LinearBody", "Physics1D.Interactions.LinearVelocityMotor",
           "DriveTrain.InfinitePowerSource"}) {
       if (fe::ModelInfo* m = program.loaded_model(name)) unsupported_.push_back(m);
     }
@@ -116,6 +115,8 @@ class SystemBuilder {
     lidar_ = program.loaded_model("Sensors.LidarLogic");
     terrain_ = program.loaded_model("Terrain.Terrain");
     elastic_wheel_ = program.loaded_model("Vehicles.Wheels.ElasticWheel");
+    track_system_ = program.loaded_model("Vehicles.TrackSystem.Base");
+    track_links_ = program.loaded_model("Vehicles.TrackSystem.Components.Tracks.Base");
     steering_trait_ = program.loaded_model("Vehicles.Suspensions.Properties.Steering");
     steering_interaction_ = program.loaded_model("Vehicles.Steering.Kinematic.Interactions.Base");
   }
@@ -138,6 +139,7 @@ class SystemBuilder {
     apply_kinematic_control();
     resolve_redirects();
     resolve_elastic_wheels();
+    resolve_tracks();
     for (Mate& mate : view_.mates) resolve_connectors(mate);
     for (Interaction1D& interaction : view_.interactions) attach(interaction);
     resolve_drivetrain();
@@ -261,6 +263,8 @@ class SystemBuilder {
         view_.terrains.push_back(std::move(t));
         return;  // its material and soil have no MuJoCo counterpart (warned by the emitter)
       }
+      case Role::Kind::TrackLinks:
+        return;  // the links are made by the emitter from the description (resolve_tracks)
       case Role::Kind::None:
         break;
     }
@@ -290,7 +294,8 @@ class SystemBuilder {
       PackagePath,
       CollisionFilter,
       Lidar,
-      Terrain
+      Terrain,
+      TrackLinks
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
@@ -313,6 +318,7 @@ class SystemBuilder {
                 : sub(collision_filter_) ? K::CollisionFilter
                 : sub(lidar_)            ? K::Lidar
                 : sub(terrain_)          ? K::Terrain
+                : sub(track_links_)      ? K::TrackLinks
                 : sub(shaft_)            ? K::Shaft
                 : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_) ||
                         sub(gearbox_) || sub(converter_) || sub(mean_value_engine_) || sub(empirical_engine_)
@@ -888,6 +894,44 @@ class SystemBuilder {
     }
   }
 
+  void resolve_tracks() {
+    if (!track_system_) return;
+    for (const FrameNode& n : view_.nodes) {
+      if (n.kind != FrameNode::Kind::System || !ev_.graph().at(n.object).type->is_subtype_of(track_system_))
+        continue;
+      TrackSystem t;
+      t.object = n.object;
+      t.path = n.path;
+      t.where = n.where;
+      const fe::ObjectId links = object(n.object, "tracks");
+      const fe::ObjectId description =
+          links == fe::kNoObject ? fe::kNoObject : object(links, "link_description");
+      t.link_count = links == fe::kNoObject ? 0 : static_cast<int>(real(links, "link_count"));
+      if (description != fe::kNoObject) {
+        t.link_width = real(description, "width");
+        t.link_height = real(description, "height");
+        if (const fe::ObjectId inertia = object(description, "inertia"); inertia != fe::kNoObject)
+          t.link_mass = real(inertia, "mass");
+        fe::ObjectId material = links == fe::kNoObject ? fe::kNoObject : object(links, "material");
+        if (const fe::ObjectId box = object(description, "contact_geometry");
+            material == fe::kNoObject && box != fe::kNoObject)
+          material = object(box, "material");
+        if (material != fe::kNoObject) t.link_density = real(material, "density", 1000.0);
+      }
+      for (fe::ObjectId w : in_.objects(n.object, "track_wheels")) {
+        TrackSystem::Wheel wheel;
+        if (auto it = node_of_.find(object(w, "body")); it != node_of_.end()) wheel.body = it->second;
+        if (auto it = connector_of_.find(object(w, "center_connector")); it != connector_of_.end())
+          wheel.connector = it->second;
+        wheel.radius = real(w, "radius");
+        t.wheels.push_back(wheel);
+      }
+      if (auto it = node_of_.find(object(n.object, "chassis_body")); it != node_of_.end())
+        t.chassis = it->second;
+      view_.tracks.push_back(std::move(t));
+    }
+  }
+
   void resolve_elastic_wheels() {
     if (!elastic_wheel_) return;
     for (const FrameNode& n : view_.nodes) {
@@ -949,6 +993,8 @@ class SystemBuilder {
   fe::ModelInfo* lidar_ = nullptr;                 // Sensors.LidarLogic
   fe::ModelInfo* terrain_ = nullptr;               // Terrain.Terrain
   fe::ModelInfo* elastic_wheel_ = nullptr;         // Vehicles.Wheels.ElasticWheel
+  fe::ModelInfo* track_system_ = nullptr;          // Vehicles.TrackSystem.Base
+  fe::ModelInfo* track_links_ = nullptr;           // Vehicles.TrackSystem.Components.Tracks.Base
   fe::ModelInfo* steering_trait_ = nullptr;        // Vehicles.Suspensions.Properties.Steering
   fe::ModelInfo* steering_interaction_ = nullptr;  // Vehicles kinematic steering interaction
   fe::ModelInfo* rigid_body_ = nullptr;

@@ -217,6 +217,25 @@ struct Terrain {
   frontend::SourceRange where;
 };
 
+// A Vehicles.TrackSystem.Base: link_count links of the link description's box, routed around its wheels
+// (bodies turning about their center connectors' main axes).
+struct TrackSystem {
+  ObjectRef object;
+  std::string path;
+  int link_count = 0;
+  double link_width = 0, link_height = 0;
+  double link_mass = 0;        // the description's inertia.mass; 0: from density
+  double link_density = 1000;  // its contact geometry's (or the tracks') material
+  struct Wheel {
+    int body = -1;       // node index
+    int connector = -1;  // its center connector (connector index)
+    double radius = 0;
+  };
+  std::vector<Wheel> wheels;  // in track_wheels order
+  int chassis = -1;           // chassis_body's node: the links do not touch it
+  frontend::SourceRange where;
+};
+
 struct Connector {
   ObjectRef object;
   int owner = kWorld;  // node index or kWorld
@@ -416,6 +435,7 @@ struct ResolvedSystem {
   std::vector<JointCoupling> joint_couplings;
   std::vector<Lidar> lidars;
   std::vector<Terrain> terrains;
+  std::vector<TrackSystem> tracks;
   std::vector<JointProperties> joint_properties;
   std::vector<CollisionFilter> collision_filters;
   Gravity gravity;

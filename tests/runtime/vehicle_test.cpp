@@ -187,6 +187,81 @@ TEST(VehicleWheel, ElasticTireHangsAtItsStiffnessAndTurnsWithTheRim) {
   EXPECT_NEAR(sim.output("tire_spin").vec3().y(), 5.0, 1e-3);
 }
 
+// A tracked vehicle: a 100 kg chassis on a sprocket and an idler (0.2 m) 2 m apart, 60 box links (5 cm
+// thick) around them, on the ground. Its sprocket driven at 2 rad/s moves the track at ω (r + h / 2) =
+// 0.45 m/s past the wheels; the ground holds the lower run, so the vehicle rolls forward at that speed, less
+// the slip of the links' friction contacts on the sprocket (10 %), and straight ahead.
+TEST(VehicleTracks, MovesWhenItsSprocketTurns) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "tank.openplx")
+      << "Sprocket is Vehicles.TrackSystem.Components.TrackWheels.Sprocket:\n"
+         "    with Vehicles.TrackSystem.Components.TrackWheels.Traits.CylindricalShape\n"
+         "    radius: 0.2\n"
+         "    width: 0.3\n"
+         "    body.inertia.mass: 10\n"
+         "\n"
+         "Idler is Vehicles.TrackSystem.Components.TrackWheels.Idler:\n"
+         "    with Vehicles.TrackSystem.Components.TrackWheels.Traits.CylindricalShape\n"
+         "    radius: 0.2\n"
+         "    width: 0.3\n"
+         "    body.inertia.mass: 10\n"
+         "\n"
+         "const LinkMaterial is Physics.Geometries.Material:\n"
+         "    density: 2000\n"
+         "\n"
+         "Tank is Physics3D.System:\n"
+         "    ground is Physics3D.Bodies.RigidBody:\n"
+         "        is_dynamic: false\n"
+         "        kinematics.local_transform.position: {0, 0, -0.55}\n"
+         "        floor is Physics3D.Geometries.Box:\n"
+         "            size: {40, 10, 0.2}\n"
+         "    chassis is Physics3D.Bodies.RigidBody:\n"
+         "        inertia.mass: 100\n"
+         "        geometry is Physics3D.Geometries.Box:\n"
+         "            size: {2, 0.2, 0.2}\n"
+         "        sprocket_connector is Physics3D.Interactions.MateConnector:\n"
+         "            main_axis: Math.Vec3.Y_AXIS()\n"
+         "            normal: Math.Vec3.Z_AXIS()\n"
+         "            position: {-1, 0.3, -0.2}\n"
+         "        idler_connector is Physics3D.Interactions.MateConnector:\n"
+         "            main_axis: Math.Vec3.Y_AXIS()\n"
+         "            normal: Math.Vec3.Z_AXIS()\n"
+         "            position: {1, 0.3, -0.2}\n"
+         "    track_system is Vehicles.TrackSystem.Base:\n"
+         "        tracks.link_count: 60\n"
+         "        tracks.link_description becomes "
+         "Vehicles.TrackSystem.Components.Tracks.LinkDescription.Box:\n"
+         "            width: 0.3\n"
+         "            height: 0.05\n"
+         "            contact_geometry.material: LinkMaterial\n"
+         "        track_wheels: [track_system.sprocket, track_system.idler]\n"
+         "        sprocket is Sprocket\n"
+         "        idler is Idler\n"
+         "        chassis_body: chassis\n"
+         "    tracks_connection is Vehicles.TrackSystem.Connections.Base with "
+         "Vehicles.TrackSystem.Connections.Traits.TwoWheels:\n"
+         "        track_system: track_system\n"
+         "        connectors: [chassis.sprocket_connector, chassis.idler_connector]\n"
+         "    drive is Physics3D.Interactions.RotationalVelocityMotor:\n"
+         "        connectors: tracks_connection.hinge_1.hinge.connectors\n"
+         "        min_effort: -500\n"
+         "        max_effort: 500\n"
+         "    speed is Physics.Signals.AngularVelocity1DInput:\n"
+         "        source: drive\n"
+         "    position is Physics3D.Signals.Position3DOutput:\n"
+         "        source: chassis\n";
+  rt::Simulation sim = rt::Simulation::load((dir / "tank.openplx").string());
+  EXPECT_GE(mj_name2id(sim.model(), mjOBJ_BODY, "track_system.link59"), 0);
+  sim.input("speed").set(2.0);
+  sim.advance(1.0);  // up to speed
+  const Eigen::Vector3d from = sim.output("position").vec3();
+  sim.advance(2.0);
+  const Eigen::Vector3d moved = sim.output("position").vec3() - from;
+  EXPECT_NEAR(moved.x() / 2.0, 2.0 * (0.2 + 0.025), 0.1 * 0.45);
+  EXPECT_LT(std::abs(moved.y()), 0.02);
+  EXPECT_LT(std::abs(moved.z()), 0.02);
+}
+
 // samples/vehicle_circle: held at a steering angle of 0.3 rad with its rear wheels spun at 8 rad/s, the car
 // drives a circle. Its centre of turning lies on the rear axle's line at L / tan(left angle) + w / 2 from the
 // rear axle's middle (Ackermann: the inner, left, wheel sets it), so the chassis centre, L / 2 ahead of the
