@@ -6,9 +6,12 @@ namespace openplx::mjcf {
 
 void Lowering::emit_terrains() {
   for (const sn::Terrain& t : view_.terrains) {
-    if (t.num_x < 2 || t.num_y < 2 || !(t.element_size > 0)) {
-      warn(t.where,
-           "terrain `" + t.path + "` needs at least 2 x 2 elements of positive size; it was left out");
+    constexpr double kMaxPoints = 1e7;  // 80 MB of heights in MuJoCo: beyond that, a typo, not a terrain
+    if (t.num_x < 2 || t.num_y < 2 || !(t.element_size > 0) ||
+        static_cast<double>(t.num_x) * t.num_y > kMaxPoints) {
+      warn(t.where, "terrain `" + t.path +
+                        "` needs from 2 x 2 to 10 million elements of positive size; it was "
+                        "left out");
       continue;
     }
     warn(t.where, "terrain `" + t.path +

@@ -80,11 +80,12 @@ void Lowering::emit_tracks(Element& root) {
   for (const sn::TrackSystem& t : view_.tracks) {
     const bool wheels_known = std::all_of(t.wheels.begin(), t.wheels.end(),
                                           [](const auto& w) { return w.connector >= 0 && w.radius > 0; });
-    if (t.wheels.size() < 2 || !wheels_known || t.link_count < 3 || !(t.link_width > 0) ||
-        !(t.link_height > 0)) {
+    constexpr int kMaxLinks = 2000;  // each link is a body: more would swamp MuJoCo's quadratic compiler
+    if (t.wheels.size() < 2 || !wheels_known || t.link_count < 3 || t.link_count > kMaxLinks ||
+        !(t.link_width > 0) || !(t.link_height > 0)) {
       warn(t.where, "track system `" + t.path +
-                        "` needs two or more wheels with radii and center connectors and "
-                        "three or more links of positive width and height; its track was left out");
+                        "` needs two or more wheels with radii and center connectors and 3 to 2000 links of "
+                        "positive width and height; its track was left out");
       continue;
     }
     // The belt's plane: across the first wheel's axle, through the wheels' centres.
@@ -107,6 +108,17 @@ void Lowering::emit_tracks(Element& root) {
       const Eigen::Vector2d da = a.centre - centroid, db = b.centre - centroid;
       return std::atan2(da.y(), da.x()) < std::atan2(db.y(), db.x());
     });
+    // Consecutive wheels must be apart, neither inside the other, for the belt to have outer tangents.
+    bool separate = true;
+    for (size_t i = 0; i < circles.size(); ++i) {
+      const Circle &a = circles[i], &b = circles[(i + 1) % circles.size()];
+      separate = separate && (b.centre - a.centre).norm() > std::abs(a.radius - b.radius) + 1e-9;
+    }
+    if (!separate) {
+      warn(t.where, "track system `" + t.path +
+                        "` has wheels at one place or one inside another; its track was left out");
+      continue;
+    }
     const BeltLine line(circles);
     const int n = t.link_count;
     const double pitch = line.length() / n;

@@ -1,5 +1,6 @@
 #include "snap/read_lidar.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace openplx::snap {
@@ -21,7 +22,11 @@ std::vector<Eigen::Vector3d> sweep(AttributeReader& in, fe::ObjectId source) {
     const fe::ObjectId range = in.object(source, fov);
     const double lo = range == fe::kNoObject ? 0 : in.real(range, "x"),
                  hi = range == fe::kNoObject ? 0 : in.real(range, "y");
-    const int n = std::max(1, static_cast<int>(in.real(source, resolution, 1)));
+    // At most kMaxAxisRays per axis: the emitter keeps 4096 rays in all and says so; this only keeps a
+    // resolution of millions from allocating them first.
+    constexpr double kMaxAxisRays = 4096;
+    const double given = in.real(source, resolution, 1);
+    const int n = std::isfinite(given) ? static_cast<int>(std::clamp(given, 1.0, kMaxAxisRays)) : 1;
     std::vector<double> out;
     for (int k = 0; k < n; ++k) out.push_back(n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * k / (n - 1));
     return out;

@@ -255,8 +255,8 @@ class SystemBuilder {
         t.path = ev_.graph().path(id);
         t.parent = enclosing;
         read_transform(id, t.local);
-        t.num_x = static_cast<int>(real(id, "num_elements_x"));
-        t.num_y = static_cast<int>(real(id, "num_elements_y"));
+        t.num_x = count(id, "num_elements_x");
+        t.num_y = count(id, "num_elements_y");
         t.element_size = real(id, "element_size");
         t.max_depth = real(id, "max_depth");
         t.where = where_of(id);
@@ -344,6 +344,11 @@ class SystemBuilder {
     return in_.real(id, name, fallback);
   }
   fe::ObjectId object(fe::ObjectId id, std::string_view name) { return in_.object(id, name); }
+  // A count attribute, clamped to [0, 1e9] so that no value overflows an int (the passes bound it further).
+  int count(fe::ObjectId id, std::string_view name) {
+    const double v = real(id, name);
+    return std::isfinite(v) ? static_cast<int>(std::clamp(v, 0.0, 1e9)) : 0;
+  }
 
   void read_body(fe::ObjectId id, BodyProperties& body) {
     if (const fe::Value* d = ev_.value(id, "is_dynamic"); d && d->kind == fe::Value::Kind::Bool)
@@ -906,7 +911,7 @@ class SystemBuilder {
       const fe::ObjectId links = object(n.object, "tracks");
       const fe::ObjectId description =
           links == fe::kNoObject ? fe::kNoObject : object(links, "link_description");
-      t.link_count = links == fe::kNoObject ? 0 : static_cast<int>(real(links, "link_count"));
+      t.link_count = links == fe::kNoObject ? 0 : count(links, "link_count");
       if (description != fe::kNoObject) {
         t.link_width = real(description, "width");
         t.link_height = real(description, "height");

@@ -47,4 +47,19 @@ TEST(Terrain, IsAStaticHeightFieldABallRestsOn) {
   EXPECT_LT(sim.output("height").vec3().z(), 0.4 + 1e-9);  // on it, not above it
 }
 
+// A grid of 1e9 x 1e9 elements (a typo, not a terrain) is left out with a warning instead of allocating.
+TEST(Terrain, AnAbsurdGridIsLeftOutWithAWarning) {
+  const openplx::testing::ScratchDir dir;
+  std::ofstream(dir / "terrain.openplx") << "Scene is Physics3D.System:\n"
+                                            "    ground is Terrain.Terrain:\n"
+                                            "        num_elements_x: 1000000000\n"
+                                            "        num_elements_y: 1000000000\n"
+                                            "        element_size: 0.1\n"
+                                            "        max_depth: 0.5\n";
+  rt::Simulation sim = rt::Simulation::load((dir / "terrain.openplx").string());
+  EXPECT_EQ(sim.model()->nhfield, 0);
+  ASSERT_EQ(sim.warnings().size(), 1u);
+  EXPECT_NE(sim.warnings()[0].find("needs from 2 x 2 to 10 million elements"), std::string::npos);
+}
+
 }  // namespace
