@@ -218,7 +218,7 @@ void Lowering::emit_distance_interaction(Element& root, Element& actuators, cons
   tendon.add("site").set("site", site_for(a));
   tendon.add("site").set("site", site_for(b));
   const int index = index_in(view_.interactions, i);
-  distance_ranges_[index] = name(i.path);
+  distance_tendons_[index] = name(i.path);
   if (range) return;
   double inverse_mass = 0;  // of the distance: both bodies' (the world's is zero)
   for (int c : {a, b}) {

@@ -102,12 +102,18 @@ void Lowering::emit_joints(Element& body, int node, int m) {
 // travel is held rigid instead, which is what such a spring does to within m g / k, and said so.
 bool Lowering::travel_held_rigid(const sn::Mate& mate, int node) {
   const double k = mate.travel_stiffness, mass = view_.nodes[node].body.mass;
-  if (!(k > 0 && mass > 0 && options_.timestep * std::sqrt(k / mass) > 0.5)) return false;
+  if (!too_stiff_for_step(k, mass)) return false;
   warn(mate.where, "`" + mate.path + ".spring_constant` (" + number(k) + " N/m on " + number(mass) +
                        " kg) is stiffer than MuJoCo integrates at a " + number(options_.timestep) +
                        " s step; the travel was held rigid (its static deflection, m g / k = " +
                        number(mass * 9.81 / k) + " m, is lost)");
   return true;
+}
+
+// A spring k on inertia m whose period is under about 4π steps (ω h > 0.5): MuJoCo integrates joint
+// stiffness explicitly, so it would blow up. Unknown inertia (0) is not judged.
+bool Lowering::too_stiff_for_step(double k, double inertia) const {
+  return k > 0 && inertia > 0 && options_.timestep * std::sqrt(k / inertia) > 0.5;
 }
 
 // A tire direction whose spring is too stiff for explicit integration at this step (ω h > 0.5 with the
@@ -117,8 +123,8 @@ bool Lowering::tire_direction_rigid(const sn::Mate& mate, int node, const sn::Do
                                     bool rotational, const char* axis) {
   if (!(dof.stiffness > 0)) return true;
   const sn::BodyProperties& body = view_.nodes[node].body;
-  const double inertia = rotational ? body.inertia.diagonal().maxCoeff() : body.mass;
-  if (!(inertia > 0) || options_.timestep * std::sqrt(dof.stiffness / inertia) <= 0.5) return false;
+  if (!too_stiff_for_step(dof.stiffness, rotational ? body.inertia.diagonal().maxCoeff() : body.mass))
+    return false;
   warn(mate.where, "`" + mate.path + "`'s " + (rotational ? "rotational" : "translational") + " stiffness " +
                        number(dof.stiffness) + (rotational ? " N m/rad" : " N/m") + " (" + (axis + 1) +
                        ") is stiffer than MuJoCo integrates at a " + number(options_.timestep) +

@@ -35,16 +35,12 @@ void Lowering::emit_lidars() {
                             std::to_string(kMaxRays) + " were made rangefinders");
       rays = kMaxRays;
     }
-    const sn::Connector& c = view_.connectors[lidar.connector];
-    const int owner = vertex_of_connector(lidar.connector);
-    auto body = body_element_.find(owner);
-    Element& parent = owner >= 0 && body != body_element_.end() ? *body->second : *world_;
-    const sn::Transform frame = owner >= 0 ? c.local : snap_.connector_world[lidar.connector];
+    const auto [parent, frame] = connector_mount(lidar.connector);
     std::vector<std::string>& names = lidar_sensors_[static_cast<int>(k)];
     for (size_t r = 0; r < rays; ++r) {
       const std::string ray = name(lidar.path) + ".ray" + std::to_string(r);
       const Eigen::Vector3d direction = frame.rotation * lidar.rays[r].normalized();
-      parent.add("site")
+      parent->add("site")
           .set("name", ray)
           .set("pos", frame.position)
           .set_quat("quat", Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), direction));

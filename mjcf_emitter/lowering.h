@@ -107,6 +107,7 @@ class Lowering {
   // ----------------------------------------------------------------------------------- joints.cpp
   void emit_joints(Element& body, int node, int m);
   bool travel_held_rigid(const sn::Mate& mate, int node);
+  bool too_stiff_for_step(double stiffness, double inertia) const;
   bool tire_direction_rigid(const sn::Mate& mate, int node, const sn::DofCompliance& dof, bool rotational,
                             const char* axis);
   void warn_mate_softness(const sn::Mate& mate, bool loop);
@@ -192,6 +193,7 @@ class Lowering {
   SignalBinding bind_body(SignalBinding b, std::string_view stem, int n);
   SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c);
   std::string site_for(int c);
+  std::pair<Element*, sn::Transform> connector_mount(int c);
   void add_sensor(SignalBinding& b);
 
   // -------------------------------------------------------------------------------------------- state
@@ -265,7 +267,7 @@ class Lowering {
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
-  std::map<int, std::string> distance_ranges_;                  // DistanceRange/Motor -> its tendon
+  std::map<int, std::string> distance_tendons_;                 // DistanceRange/Motor -> its tendon
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
   struct SteeringElements {
     std::string angle_equality;  // holds the left wheel's steering angle (the input)

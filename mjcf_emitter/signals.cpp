@@ -4,6 +4,18 @@
 
 namespace openplx::mjcf {
 
+namespace {
+// A binding that knows only its signal: path, direction, type and enabled flag.
+SignalBinding binding_of(const sn::Signal& s) {
+  SignalBinding b;
+  b.path = s.path;
+  b.input = s.input;
+  b.type = s.type;
+  b.enabled = s.enabled;
+  return b;
+}
+}  // namespace
+
 // One binding per OpenPLX signal (signal_binding.h), and a MuJoCo sensor for every enabled output that
 // has one. Outputs without a sensor (controls, ranges, constants) are computed by the runtime.
 void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
@@ -30,10 +42,7 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
 // sensors of those kinds at a site on the sensor's connector (its axes: x normal, y cross, z main axis). An
 // accelerometer reads proper acceleration (gravity included), as a real one does.
 SignalBinding Lowering::bind_imu(const sn::Signal& s) {
-  SignalBinding b;
-  b.path = s.path;
-  b.type = s.type;
-  b.enabled = s.enabled;
+  SignalBinding b = binding_of(s);
   b.value = SignalValue::Vector;
   using Kind = sn::Signal::SensorField::Kind;
   for (const sn::Signal::SensorField& f : s.sensor_fields) {
@@ -63,11 +72,7 @@ SignalBinding Lowering::bind_imu(const sn::Signal& s) {
 // A RobotInput or RobotOutput: its parts' paths in order. An input's parts must be scalar inputs (one value
 // each); an output's parts any outputs. Sensors (members unpublished) are not composed.
 SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts) {
-  SignalBinding b;
-  b.path = s.path;
-  b.input = s.input;
-  b.type = s.type;
-  b.enabled = s.enabled;
+  SignalBinding b = binding_of(s);
   b.value = SignalValue::Vector;
   if (s.sensors > 0) {
     warn(s.where, "`" + s.path +
@@ -113,11 +118,7 @@ SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<Si
 }
 
 SignalBinding Lowering::bind(const sn::Signal& s) {
-  SignalBinding b;
-  b.path = s.path;
-  b.input = s.input;
-  b.type = s.type;
-  b.enabled = s.enabled;
+  SignalBinding b = binding_of(s);
   const SignalKind kind = signal_kind(s.type);
   b.value = kind.value;
   b.unit = kind.unit;
@@ -156,7 +157,7 @@ SignalBinding Lowering::bind(const sn::Signal& s) {
 
 SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
-  if (auto range = distance_ranges_.find(k); range != distance_ranges_.end()) {
+  if (auto range = distance_tendons_.find(k); range != distance_tendons_.end()) {
     const bool motor = i.kind == sn::Interaction1D::Kind::DistanceMotor;
     if (stem == "Position1D" && !b.input)
       return mapped(std::move(b), Quantity::TendonLength, MjObject::Tendon, range->second);
@@ -403,15 +404,20 @@ SignalBinding Lowering::bind_connector(SignalBinding b, std::string_view stem, i
 
 // A site at a mate connector, in the MuJoCo body that carries it (the world for system connectors).
 std::string Lowering::site_for(int c) {
-  const sn::Connector& connector = view_.connectors[c];
-  const std::string site = name(connector.path);
+  const std::string site = name(view_.connectors[c].path);
   if (!sites_.insert(c).second) return site;
+  const auto [parent, frame] = connector_mount(c);
+  parent->add("site").set("name", site).set("pos", frame.position).set_quat("quat", frame.rotation);
+  return site;
+}
+
+// Where a connector's sites go: its body's element and its frame there, or the world and its world frame
+// (system connectors).
+std::pair<Element*, sn::Transform> Lowering::connector_mount(int c) {
   const int owner = vertex_of_connector(c);
   auto body = body_element_.find(owner);
-  Element& parent = owner >= 0 && body != body_element_.end() ? *body->second : *world_;
-  const sn::Transform frame = owner >= 0 ? connector.local : snap_.connector_world[c];
-  parent.add("site").set("name", site).set("pos", frame.position).set_quat("quat", frame.rotation);
-  return site;
+  if (owner >= 0 && body != body_element_.end()) return {body->second, view_.connectors[c].local};
+  return {world_, snap_.connector_world[c]};
 }
 
 void Lowering::add_sensor(SignalBinding& b) {

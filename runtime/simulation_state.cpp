@@ -73,10 +73,15 @@ std::string_view type_name(ValueType type) {
   return "a value";
 }
 
+// A signal made of other signals (Robotics composites, Control's virtual signals): its names are its parts'
+// OpenPLX paths, not MuJoCo elements.
+bool composed(Quantity q) {
+  return q == Quantity::Composite || q == Quantity::Broadcast || q == Quantity::Affine;
+}
+
 std::string describe(const mjcf::SignalBinding& b) {
   if (b.quantity == Quantity::None) return "not mapped: " + b.reason;
-  if (b.quantity == Quantity::Composite || b.quantity == Quantity::Broadcast ||
-      b.quantity == Quantity::Affine) {
+  if (composed(b.quantity)) {
     std::string text = std::string(to_string(b.quantity)) + " of";
     for (const std::string& name : b.names) text += " " + name;
     return text;
@@ -125,9 +130,7 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
     s.info.mapped = b.quantity != Quantity::None;
     s.info.mujoco = describe(b);
     for (const std::string& name : b.names) {
-      if (b.quantity == Quantity::Composite || b.quantity == Quantity::Broadcast ||
-          b.quantity == Quantity::Affine)
-        break;  // its names are its parts' OpenPLX paths
+      if (composed(b.quantity)) break;
       const int id = mj_name2id(m, object_type(b.object), name.c_str());
       if (id < 0) {  // the emitter promised it: a mismatch is a bug, so the signal is refused, not misread
         s.info.mapped = false;
@@ -211,7 +214,7 @@ static size_t value_count(ValueType type) {
 void SimulationState::resolve_composites() {
   for (ResolvedSignal& s : signals) {
     const Quantity q = s.binding.quantity;
-    if (q != Quantity::Composite && q != Quantity::Broadcast && q != Quantity::Affine) continue;
+    if (!composed(q)) continue;
     s.info.size = 0;
     for (const std::string& path : s.binding.names) {
       auto it = by_name.find(path);
