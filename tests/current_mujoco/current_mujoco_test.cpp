@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "tests/support/scratch_dir.h"
+#include "tests/support/soft_lock_scene.h"
 #include "tools/cli/cli.h"
 
 namespace {
@@ -181,51 +182,54 @@ TEST(CurrentMuJoCo, EveryOutputLoadsWithTheSamePosesAndMoves) {
   EXPECT_GE(files.size(), 35u);
 }
 
+// A model emitted with the 2.2 law and with --mujoco 3, each run 5 s: in MuJoCo 2.2.2 (the 2.2 file) and in
+// 3.3.8 (both files, so the test can show what the wrong law gives).
+struct InBothVersions {
+  bool ok = false;
+  std::string failure;
+  Outcome mujoco2, mujoco3, mujoco3_with_22_law;
+};
+
+InBothVersions simulate_in_both_versions(const fs::path& model, const fs::path& dir) {
+  InBothVersions run;
+  const std::string for2 = (dir / (model.stem().string() + "_2.xml")).string();
+  const std::string for3 = (dir / (model.stem().string() + "_3.xml")).string();
+  for (const auto& args : {std::vector<std::string>{model.string(), "-o", for2},
+                           std::vector<std::string>{model.string(), "-o", for3, "--mujoco", "3"}}) {
+    std::ostringstream text, errors;
+    if (openplx::cli::run(args, text, errors) != 0) {
+      run.failure = errors.str();
+      return run;
+    }
+  }
+  constexpr int kFiveSeconds = 2500;
+  run.mujoco2 = run_mujoco2(for2, kFiveSeconds);
+  const std::map<std::string, Outcome> now = run_mujoco3({for2, for3}, run.failure, kFiveSeconds);
+  if (!run.mujoco2.ok) run.failure += run.mujoco2.error;
+  if (!run.failure.empty()) return run;
+  run.mujoco3 = now.at(for3);
+  run.mujoco3_with_22_law = now.at(for2);
+  run.ok = run.mujoco3.ok && run.mujoco3_with_22_law.ok;
+  if (!run.ok) run.failure = run.mujoco3.error + run.mujoco3_with_22_law.error;
+  return run;
+}
+
 // spec/mujoco3-notes.md 4.2.4: a 2 kg box on a vertical slide hung from a 2000 N/m flexible Lock settles
 // m g / k = 9.81 mm low in 2.2.2 with the default law, and in 3.x only with --mujoco 3 (3.x gives this
 // "simple" body dA = 1/m, three times 2.2.2's). Within 1 % after 5 s in both.
 TEST(CurrentMuJoCo, SoftLockSettlesAtItsSpringLengthInBothVersions) {
   const openplx::testing::ScratchDir dir;
   const auto model = dir / "soft_lock.openplx";
-  std::ofstream(model)
-      << "Box is Physics3D.Bodies.RigidBody:\n"
-         "    inertia.mass: 2\n"
-         "    geometry is Physics3D.Geometries.Box:\n"
-         "        size: {0.1, 0.1, 0.1}\n"
-         "    c is Physics3D.Interactions.MateConnector:\n"
-         "        main_axis: Math.Vec3.Z_AXIS()\n"
-         "        normal: Math.Vec3.X_AXIS()\n"
-         "Scene is Physics3D.System:\n"
-         "    w is Physics3D.Interactions.MateConnector:\n"
-         "        main_axis: Math.Vec3.Z_AXIS()\n"
-         "        normal: Math.Vec3.X_AXIS()\n"
-         "    box is Box\n"
-         "    slide is Physics3D.Interactions.Prismatic:\n"
-         "        connectors: [w, box.c]\n"
-         "    lock is Physics3D.Interactions.Lock:\n"
-         "        connectors: [w, box.c]\n"
-         "        flexibility becomes Physics3D.Interactions.Flexibility.LinearElasticLockFlexibility:\n"
-         "            default_stiffness: 2000\n";
-  const std::string for2 = (dir / "soft_lock_2.xml").string(), for3 = (dir / "soft_lock_3.xml").string();
-  for (const auto& args : {std::vector<std::string>{model.string(), "-o", for2},
-                           std::vector<std::string>{model.string(), "-o", for3, "--mujoco", "3"}}) {
-    std::ostringstream text, errors;
-    ASSERT_EQ(openplx::cli::run(args, text, errors), 0) << errors.str();
-  }
-  constexpr int kFiveSeconds = 2500;
+  std::ofstream(model) << openplx::testing::kSoftLockScene;
+  const InBothVersions run = simulate_in_both_versions(model, dir.path());
+  ASSERT_TRUE(run.ok) << run.failure;
   const double expected = -2 * 9.81 / 2000;
   auto sag = [](const Outcome& r) { return r.end[5] - r.start[5]; };  // the box's (body 1) z
-  const Outcome old = run_mujoco2(for2, kFiveSeconds);
-  ASSERT_TRUE(old.ok) << old.error;
-  std::string failure;
-  const std::map<std::string, Outcome> now = run_mujoco3({for2, for3}, failure, kFiveSeconds);
-  ASSERT_TRUE(failure.empty()) << failure;
-  ASSERT_TRUE(now.at(for3).ok) << now.at(for3).error;
-  EXPECT_NEAR(sag(old), expected, 0.01 * std::abs(expected));
-  EXPECT_NEAR(sag(now.at(for3)), expected, 0.01 * std::abs(expected));
-  std::cout << "soft Lock sag (m g / k = " << expected << " m): MuJoCo 2.2.2 " << sag(old)
-            << ", 3.3.8 with --mujoco 3 " << sag(now.at(for3)) << ", 3.3.8 with the 2.2 law "
-            << sag(now.at(for2)) << "\n";
+  EXPECT_NEAR(sag(run.mujoco2), expected, 0.01 * std::abs(expected));
+  EXPECT_NEAR(sag(run.mujoco3), expected, 0.01 * std::abs(expected));
+  std::cout << "soft Lock sag (m g / k = " << expected << " m): MuJoCo 2.2.2 " << sag(run.mujoco2)
+            << ", 3.3.8 with --mujoco 3 " << sag(run.mujoco3) << ", 3.3.8 with the 2.2 law "
+            << sag(run.mujoco3_with_22_law) << "\n";
 }
 
 // spec/mujoco3-notes.md 4.2.5: a 2 kg, 0.4 m arm on a hinge about y, held level by a 2000 N m/rad flexible
@@ -254,28 +258,18 @@ TEST(CurrentMuJoCo, SoftLockHoldsItsRotationalStiffnessInBothVersions) {
          "        connectors: [w, arm.c]\n"
          "        flexibility becomes Physics3D.Interactions.Flexibility.LinearElasticLockFlexibility:\n"
          "            default_stiffness: 2000\n";
-  const std::string for2 = (dir / "rot_2.xml").string(), for3 = (dir / "rot_3.xml").string();
-  for (const auto& args : {std::vector<std::string>{model.string(), "-o", for2},
-                           std::vector<std::string>{model.string(), "-o", for3, "--mujoco", "3"}}) {
-    std::ostringstream text, errors;
-    ASSERT_EQ(openplx::cli::run(args, text, errors), 0) << errors.str();
-  }
-  constexpr int kFiveSeconds = 2500;
+  const InBothVersions run = simulate_in_both_versions(model, dir.path());
+  ASSERT_TRUE(run.ok) << run.failure;
   const double expected = 2 * 9.81 * 0.2 / 2000;
   auto angle = [](const Outcome& r) {  // the arm's (body 1) turn about y, from its quaternion
     const size_t q = static_cast<size_t>(3 * r.nbody + 4);
     return 2 * std::atan2(r.end[q + 2], r.end[q]);
   };
-  const Outcome old = run_mujoco2(for2, kFiveSeconds);
-  ASSERT_TRUE(old.ok) << old.error;
-  std::string failure;
-  const std::map<std::string, Outcome> now = run_mujoco3({for2, for3}, failure, kFiveSeconds);
-  ASSERT_TRUE(failure.empty()) << failure;
-  EXPECT_NEAR(angle(old), expected, 0.01 * expected);
-  EXPECT_NEAR(angle(now.at(for3)), expected, 0.01 * expected);
-  std::cout << "soft Lock rotation (m g r / k = " << expected << " rad): MuJoCo 2.2.2 " << angle(old)
-            << ", 3.3.8 with --mujoco 3 " << angle(now.at(for3)) << ", 3.3.8 with the 2.2 law "
-            << angle(now.at(for2)) << "\n";
+  EXPECT_NEAR(angle(run.mujoco2), expected, 0.01 * expected);
+  EXPECT_NEAR(angle(run.mujoco3), expected, 0.01 * expected);
+  std::cout << "soft Lock rotation (m g r / k = " << expected << " rad): MuJoCo 2.2.2 " << angle(run.mujoco2)
+            << ", 3.3.8 with --mujoco 3 " << angle(run.mujoco3) << ", 3.3.8 with the 2.2 law "
+            << angle(run.mujoco3_with_22_law) << "\n";
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include "tests/support/mjcf_fixture.h"
+#include "tests/support/soft_lock_scene.h"
 
 namespace {
 
@@ -136,26 +137,7 @@ TEST_F(Meshes, ConstantNormalForceFrictionBecomesFrictionloss) {
 // mapping guide measured that law to 0.1 %); the lightly damped spring (default damping: relaxation time of
 // two steps) has settled after 5 s to well within the 2 % allowed here.
 TEST_F(Meshes, FlexibleLoopClosureIsAPhysicalSpring) {
-  ASSERT_TRUE(
-      load("Box is Physics3D.Bodies.RigidBody:\n"
-           "    inertia.mass: 2\n"
-           "    geometry is Physics3D.Geometries.Box:\n"
-           "        size: {0.1, 0.1, 0.1}\n"
-           "    c is Physics3D.Interactions.MateConnector:\n"
-           "        main_axis: Math.Vec3.Z_AXIS()\n"
-           "        normal: Math.Vec3.X_AXIS()\n"
-           "Scene is Physics3D.System:\n"
-           "    w is Physics3D.Interactions.MateConnector:\n"
-           "        main_axis: Math.Vec3.Z_AXIS()\n"
-           "        normal: Math.Vec3.X_AXIS()\n"
-           "    box is Box\n"
-           "    slide is Physics3D.Interactions.Prismatic:\n"
-           "        connectors: [w, box.c]\n"
-           "    lock is Physics3D.Interactions.Lock:\n"
-           "        connectors: [w, box.c]\n"
-           "        flexibility becomes Physics3D.Interactions.Flexibility.LinearElasticLockFlexibility:\n"
-           "            default_stiffness: 2000\n"))
-      << all_diags();
+  ASSERT_TRUE(load(openplx::testing::kSoftLockScene)) << all_diags();
   const std::string path = emit("soft_lock");
   EXPECT_FALSE(sink_.has_errors()) << all_diags();
   accept_all_diags();
