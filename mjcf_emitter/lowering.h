@@ -270,9 +270,10 @@ class Lowering {
   std::map<int, std::string> distance_tendons_;                 // DistanceRange/Motor -> its tendon
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
   struct SteeringElements {
-    std::string angle_equality;  // holds the left wheel's steering angle (the input)
-    std::string left_joint;      // the left wheel's steering hinge (the output)
-    double fit_error = 0;        // rad: the linkage's quartic fit, over the steering range
+    std::string angle_equality;            // holds the left wheel's steering angle (the input)
+    std::string left_joint;                // the left wheel's steering hinge (the output)
+    double fit_error = 0;                  // rad: the linkage's quartic fit, over the steering range
+    std::vector<double> input_polynomial;  // the left wheel's angle for the input (empty: the input itself)
   };
   std::map<int, SteeringElements> steering_;               // Steering interaction -> its MuJoCo elements
   std::map<int, std::vector<std::string>> lidar_sensors_;  // lidar -> its rangefinders, ray order

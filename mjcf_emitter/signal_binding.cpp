@@ -218,6 +218,28 @@ GearSelection gearbox_ratio(const std::vector<double>& forward, const std::vecto
   return g;
 }
 
+double steering_polynomial(const std::vector<double>& c, double x) {
+  double y = 0;
+  for (size_t p = c.size(); p-- > 0;) y = y * x + c[p];  // Horner
+  return y;
+}
+
+double steering_polynomial_inverse(const std::vector<double>& c, double y) {
+  if (c.empty()) return y;
+  const double slope = c.size() > 1 ? c[1] : 0;
+  if (slope == 0) return 0;
+  double x = (y - c[0]) / slope;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    double derivative = 0;
+    for (size_t p = c.size() - 1; p >= 1; --p) derivative = derivative * x + static_cast<double>(p) * c[p];
+    if (derivative == 0 || !std::isfinite(derivative)) break;
+    const double dx = (steering_polynomial(c, x) - y) / derivative;
+    x -= dx;
+    if (std::abs(dx) <= 1e-15 * std::max(1.0, std::abs(x))) break;
+  }
+  return x;
+}
+
 namespace {
 
 std::string json_number(double value) {

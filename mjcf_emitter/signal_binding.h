@@ -58,9 +58,12 @@ enum class Quantity {
                // = how many are forward, `high` = 1 when it has a neutral gear, `initial` = the first gear.
                // Selecting re-anchors like GearRatio, with the reverse ratios negated
   EqualityTarget,  // Equality (a joint equality holding joint1 alone at a value: a kinematic steering angle):
-                   // value = qpos0 of joint1 + polycoef[0]; writing sets polycoef[0] (Real, readable)
+                   // value = qpos0 of joint1 + polycoef[0]; writing sets polycoef[0] (Real, readable).
+                   // With `initial_vector` = polynomial coefficients c0.. (a steering column's), joint1 is
+                   // held at poly(value) and reading inverts it (steering_polynomial_inverse)
   // --- outputs
-  JointPosition,      // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`
+  JointPosition,      // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`; with
+                      // `initial_vector` = polynomial coefficients, the value x with poly(x) = qpos instead
   JointVelocity,      // Joint: d->qvel[jnt_dofadr[id]], times `sign`
   ActuatorForce,      // Actuator: d->actuator_force[id] (N or N·m on the joint)
   MotorForce,         // Tendon (velocity motor): the friction row's force (efc rows of type
@@ -128,6 +131,12 @@ struct GearSelection {
 };
 GearSelection gearbox_ratio(const std::vector<double>& forward, const std::vector<double>& reverse,
                             bool has_neutral, int gear);
+
+// c[0] + c[1] x + c[2] x^2 + ... (a steering column's left wheel angle for its input).
+double steering_polynomial(const std::vector<double>& c, double x);
+// The x nearest zero's branch with steering_polynomial(c, x) = y, by Newton's method from y / c[1] (the
+// polynomial is monotonic over the steering range it was fitted on); y itself when c is empty.
+double steering_polynomial_inverse(const std::vector<double>& c, double y);
 
 // A law MJCF cannot state, computed by the runtime before each step and written into actuators.
 struct RuntimeLaw {

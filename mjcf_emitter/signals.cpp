@@ -169,7 +169,9 @@ SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem,
     }
   }
   if (auto steering = steering_.find(k); steering != steering_.end() && stem == "Angle") {
-    if (b.input) {  // the left wheel's steering angle, held by the angle equality
+    // The left wheel's steering angle, held by the angle equality, or the input through its polynomial.
+    b.initial_vector = steering->second.input_polynomial;
+    if (b.input) {
       return mapped(std::move(b), Quantity::EqualityTarget, MjObject::Equality,
                     steering->second.angle_equality);
     }

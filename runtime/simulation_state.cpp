@@ -160,7 +160,8 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
       }
       if (s.info.value == ValueType::Real) {  // the inlined fast path of Input::set and Output::real
         if (b.quantity == Quantity::Ctrl) s.direct = d->ctrl + id;
-        if (!b.input && b.quantity == Quantity::JointPosition) s.direct = d->qpos + s.address;
+        if (!b.input && b.quantity == Quantity::JointPosition && b.initial_vector.empty())
+          s.direct = d->qpos + s.address;
         if (!b.input && b.quantity == Quantity::JointVelocity) s.direct = d->qvel + s.dof;
         s.scale = b.sign;
       }
@@ -496,8 +497,10 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       m->eq_data[id * mjNEQDATA] = values[0] - m->tendon_length0[m->eq_obj1id[id]];
       stale = true;  // equality rows are built in mj_step1
       return;
-    case Quantity::EqualityTarget:
-      m->eq_data[id * mjNEQDATA] = values[0] - m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]];
+    case Quantity::EqualityTarget:  // a steering column holds the left wheel at poly(input)
+      m->eq_data[id * mjNEQDATA] =
+          (b.initial_vector.empty() ? values[0] : mjcf::steering_polynomial(b.initial_vector, values[0])) -
+          m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]];
       stale = true;
       return;
     case Quantity::GearRatio: {
@@ -634,7 +637,7 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       out[0] = equality_active(m, d, id) ? 1 : 0;
       return;
     case Quantity::JointPosition:
-      out[0] = b.sign * d->qpos[s.address];
+      out[0] = b.sign * mjcf::steering_polynomial_inverse(b.initial_vector, d->qpos[s.address]);
       return;
     case Quantity::JointVelocity:
       out[0] = b.sign * d->qvel[s.dof];
@@ -658,7 +661,8 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       out[0] = m->eq_data[id * mjNEQDATA] + m->tendon_length0[m->eq_obj1id[id]];
       return;
     case Quantity::EqualityTarget:
-      out[0] = m->eq_data[id * mjNEQDATA] + m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]];
+      out[0] = mjcf::steering_polynomial_inverse(
+          b.initial_vector, m->eq_data[id * mjNEQDATA] + m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]]);
       return;
     case Quantity::TendonLength:
       out[0] = d->ten_length[id];

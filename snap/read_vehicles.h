@@ -13,7 +13,7 @@ namespace openplx::snap {
 void read_suspension(AttributeReader& in, const frontend::ModelInfo* steering_trait, frontend::ObjectId id,
                      Mate& mate);
 
-// A Vehicles.Steering.Kinematic.Interactions.Base interaction: its mechanism and knuckle geometry, and the
+// A Vehicles.Steering.Kinematic.Interactions.Base interaction: its mechanism and linkage geometry, and the
 // mates of the suspensions its owning Steering.Kinematic.Base steers (`mate_of` maps a mate object to its
 // index, -1 when none).
 template <typename MateIndex>
@@ -25,6 +25,12 @@ void read_steering(AttributeReader& in, frontend::ObjectId id, Interaction1D& st
   }
   steering.knuckle_angle = in.real(id, "knuckle_angle");
   steering.knuckle_length = in.real(id, "knuckle_length");
+  if (steering.mechanism == "BellCrank" || steering.mechanism == "RackAndPinion") {
+    steering.tie_rod_angle = in.real(id, "initial_angle_right_tie_rod");
+    steering.column_distance = in.real(id, "steering_column_distance");
+    steering.gear = in.real(id, "gear", 1.0);
+    if (steering.mechanism == "RackAndPinion") steering.rack_length = in.real(id, "rack_length");
+  }
   const frontend::ObjectId system = in.graph().at(id).owner;
   if (system == frontend::kNoObject) return;
   const char* sides[2] = {"left_suspension", "right_suspension"};

@@ -153,6 +153,10 @@ struct Interaction1D {
   int steered[2] = {-1, -1};                     // Steering: the left and right suspension mates
   std::string mechanism;                         // Steering: "Ackermann", "BellCrank", "RackAndPinion"
   double knuckle_angle = 0, knuckle_length = 0;  // Steering: knuckle arm angle from the axle (rad), length
+  // Steering, BellCrank and RackAndPinion: the tie rods' angle to the axle line at rest (rad), the steering
+  // arm's length (bell crank lever or pinion arm, m), the rack's length (m, RackAndPinion) and the ratio of
+  // steering arm rotation to steering input.
+  double tie_rod_angle = 0, column_distance = 0, rack_length = 0, gear = 1;
   frontend::SourceRange where;
 };
 
