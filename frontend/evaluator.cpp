@@ -158,6 +158,7 @@ Evaluator::Targeting Evaluator::collect_targeting(const std::vector<Level>& leve
   // a hash lookup instead of a walk over all levels.
   Targeting t;
   for (uint32_t i = 0; i < levels.size(); ++i) {
+    if (levels[i].left_out) continue;
     for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
       if (auto it = model->by_parent.find(levels[i].rel); it != model->by_parent.end()) {
         for (uint32_t index : it->second) {
@@ -287,6 +288,18 @@ uint32_t Evaluator::reach(const ModelInfo* type) {
   return it->second = deepest;
 }
 
+bool Evaluator::assigns_only(const ModelInfo* type, const std::string& rel) const {
+  for (const ModelInfo* model : type->linearization) {
+    if (model->children_below.count(rel) || model->annotations_below.count(rel)) return false;
+    auto it = model->by_parent.find(rel);
+    if (it == model->by_parent.end()) continue;
+    for (uint32_t index : it->second) {
+      if (model->entries[index].kind != Entry::Kind::Value) return false;
+    }
+  }
+  return true;
+}
+
 void Evaluator::build_slots(ObjectId id) {
   std::vector<ObjectId>& chain = chain_;  // root first; reused, building slots creates no objects
   chain.clear();
@@ -297,7 +310,11 @@ void Evaluator::build_slots(ObjectId id) {
   // by the enclosing models whose entries reach it, each at its distance and relative path. Instances
   // that agree on all of that (the inertia of every Link, the outputs of every body) share one layout:
   // the first is built in full, the others copy it and rebind `this` to their own ancestors.
+  // An enclosing model that only assigns values to the instance's attributes (`hinge: connectors: [...]`,
+  // one per instance) leaves the layout alone: its entries are laid over a copy (overlay_assignments).
   std::string key(reinterpret_cast<const char*>(&graph_.at(id).type), sizeof(ModelInfo*));
+  std::string full_key = key;
+  std::vector<std::pair<uint32_t, std::string>> overlays;  // level, path from it to the instance
   for (uint32_t i = 0; i < own_level; ++i) {
     const ModelInfo* type = graph_.at(chain[i]).type;
     const uint32_t distance = own_level - i;
@@ -307,32 +324,106 @@ void Evaluator::build_slots(ObjectId id) {
     for (ModelInfo* model : type->linearization) {
       if (model->by_parent.count(rel) || model->children_below.count(rel) ||
           model->annotations_below.count(rel)) {
-        key.append(reinterpret_cast<const char*>(&type), sizeof(type));
-        key.append(reinterpret_cast<const char*>(&distance), sizeof(distance));
-        key += rel;
-        key += '\0';
+        std::string part(reinterpret_cast<const char*>(&type), sizeof(type));
+        part.append(reinterpret_cast<const char*>(&distance), sizeof(distance));
+        part += rel;
+        part += '\0';
+        full_key += part;
+        if (assigns_only(type, rel)) {
+          overlays.emplace_back(i, std::move(rel));
+        } else {
+          key += part;
+        }
         break;
       }
     }
   }
-  auto [layout, fresh] = layouts_.try_emplace(std::move(key));
-  if (!fresh) {
-    const Layout& l = layout->second;
-    Object& obj = graph_.at(id);
-    obj.type = l.type;
-    obj.slots = l.slots;
-    for (Slot& slot : obj.slots) {  // rebind the entries to this instance's own ancestors
-      Binding& b = slot.binding;
-      if (!b.entry) continue;
-      b.level = own_level - (l.own_level - b.level);
-      b.self = chain[b.level];
-    }
-    obj.index = l.index;
+  if (auto found = layouts_.find(full_key); found != layouts_.end()) {
+    copy_layout(id, found->second, chain, own_level);
     return;
   }
-  build_slots_from(id, levels_of(id));
+  ModelInfo* const type = graph_.at(id).type;
+  if (overlays.empty() || !use_layout(id, std::move(key), chain, own_level, overlays) ||
+      !overlay_assignments(id, chain, overlays)) {
+    graph_.at(id).type = type;
+    use_layout(id, full_key, chain, own_level, {});
+    return;
+  }
+  // The others with the same entries copy the result.
   const Object& built = graph_.at(id);
-  layout->second = {built.type, own_level, built.slots, built.index};
+  Layout& layout = layouts_[std::move(full_key)];
+  layout = {built.type, own_level, built.slots, built.index, next_layout_++};
+  graph_.at(id).layout = layout.id;
+}
+
+void Evaluator::copy_layout(ObjectId id, const Layout& l, const std::vector<ObjectId>& chain,
+                            uint32_t own_level) {
+  Object& obj = graph_.at(id);
+  obj.type = l.type;
+  obj.slots = l.slots;
+  for (Slot& slot : obj.slots) {  // rebind the entries to this instance's own ancestors
+    Binding& b = slot.binding;
+    if (!b.entry) continue;
+    b.level = own_level - (l.own_level - b.level);
+    b.self = chain[b.level];
+  }
+  obj.index = l.index;
+  obj.layout = l.id;
+}
+
+bool Evaluator::use_layout(ObjectId id, std::string key, const std::vector<ObjectId>& chain,
+                           uint32_t own_level,
+                           const std::vector<std::pair<uint32_t, std::string>>& left_out) {
+  auto [layout, fresh] = layouts_.try_emplace(std::move(key));
+  if (!fresh) {
+    copy_layout(id, layout->second, chain, own_level);
+    return true;
+  }
+  graph_.at(id).slots.clear();
+  std::vector<Level> levels = levels_of(id);
+  for (const auto& [level, rel] : left_out) levels[level].left_out = true;
+  build_slots_from(id, levels);
+  Object& built = graph_.at(id);
+  layout->second = {built.type, own_level, built.slots, built.index, next_layout_++};
+  built.layout = layout->second.id;
+  return true;
+}
+
+bool Evaluator::overlay_assignments(ObjectId id, const std::vector<ObjectId>& chain,
+                                    const std::vector<std::pair<uint32_t, std::string>>& overlays) {
+  // Entries aimed at attributes the layout lacks (unknown or 0.17.8 names) take the full path, which
+  // reports them.
+  Object& obj = graph_.at(id);
+  for (const auto& [level, rel] : overlays) {
+    for (const ModelInfo* model : graph_.at(chain[level]).type->linearization) {
+      auto it = model->by_parent.find(rel);
+      if (it == model->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        if (!obj.has(model->entries[index].path.back())) return false;
+      }
+    }
+  }
+  // Priority as in collect_targeting and pick_value: the level nearest the root, then the most derived
+  // model; an assignment beats a declaration's default.
+  std::vector<bool> overlaid(obj.slots.size(), false);
+  for (const auto& [level, rel] : overlays) {
+    for (ModelInfo* model : graph_.at(chain[level]).type->linearization) {
+      auto it = model->by_parent.find(rel);
+      if (it == model->by_parent.end()) continue;
+      for (uint32_t index : it->second) {
+        const Entry& e = model->entries[index];
+        const uint32_t k = obj.index->at(e.path.back());
+        Slot& slot = obj.slots[k];
+        if (overlaid[k]) continue;
+        const Binding& b = slot.binding;
+        if (b.entry && b.entry->kind == Entry::Kind::Value && b.level < level) continue;
+        slot.binding = {&e, model, chain[level], level};
+        slot.explicit_value = true;
+        overlaid[k] = true;
+      }
+    }
+  }
+  return true;
 }
 
 void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) {
@@ -502,12 +593,49 @@ void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
   }
 }
 
+bool Evaluator::reached_by_entries(ObjectId id) const {
+  std::vector<ObjectId> chain;
+  for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
+  std::reverse(chain.begin(), chain.end());
+  const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
+  for (uint32_t i = 0; i < own_level; ++i) {
+    const ModelInfo* type = graph_.at(chain[i]).type;
+    auto known = reach_.find(type);
+    if (known != reach_.end() && own_level - i > known->second) continue;
+    std::string rel;
+    for (uint32_t k = i + 1; k <= own_level; ++k) (rel += rel.empty() ? "" : ".") += graph_.at(chain[k]).name;
+    for (const ModelInfo* model : type->linearization) {
+      if (model->by_parent.count(rel) || model->children_below.count(rel) ||
+          model->annotations_below.count(rel))
+        return true;
+    }
+  }
+  return false;
+}
+
+void Evaluator::move_free_subtree(ObjectId id, uint32_t levels) {
+  Object& obj = graph_.at(id);
+  obj.depth += levels;
+  for (Slot& slot : obj.slots) {
+    if (slot.binding.entry) slot.binding.level += levels;
+    if (slot.preset && slot.owns) move_free_subtree(slot.value.object, levels);
+  }
+}
+
 void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, uint32_t level) {
   {
     Object& obj = graph_.at(child);
     obj.owner = owner;
     obj.name = name;
     obj.depth = graph_.at(owner).depth + 1;
+  }
+  // Most values (`main_axis: Math.Vec3.Y_AXIS()`) have no entries aimed at their parts: their bindings
+  // stay, a level deeper for every level above them.
+  if (!reached_by_entries(child)) {
+    const uint32_t depth = graph_.at(child).depth;
+    graph_.at(child).depth = 0;  // where it was made, free
+    move_free_subtree(child, depth);
+    return;
   }
   // The value came with its fields set at `level`; assignments to its parts from that level or nearer the
   // root still win (`position: {0, 0, 1}` in a body, `body.position.z: 2` in its owner).
@@ -721,6 +849,40 @@ void Evaluator::evaluate_all(ObjectId root) {
   }
 }
 
+void Evaluator::evaluate_layouts(ObjectId root) {
+  std::vector<ObjectId> todo{root};
+  while (!todo.empty()) {
+    const ObjectId id = todo.back();
+    todo.pop_back();
+    const uint32_t layout = graph_.at(id).layout;
+    // Depth first: the first instance's whole subtree is checked before any other instance is reached,
+    // except the instances inside it (a model owning its own kind), which are checked like it.
+    auto [checked, first] = checked_.try_emplace(layout, id);
+    if (!first && !noisy_.count(layout) && !owns_transitively(checked->second, id)) continue;
+    const size_t reported = sink_.diagnostics().size();
+    for (uint32_t i = 0; i < graph_.at(id).slots.size(); ++i) {
+      const Value& v = value(id, i);
+      const Slot& slot = graph_.at(id).slots[i];
+      if (slot.owns && v.kind == Value::Kind::Object) todo.push_back(v.object);
+    }
+    if (sink_.diagnostics().size() == reported) continue;
+    for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner)
+      noisy_.insert(graph_.at(cur).layout);
+  }
+}
+
+bool Evaluator::owns_transitively(ObjectId owner, ObjectId id) const {
+  for (ObjectId cur = graph_.at(id).owner; cur != kNoObject; cur = graph_.at(cur).owner) {
+    if (cur == owner) return true;
+  }
+  return false;
+}
+
+ObjectId Evaluator::checked_instance(const Object& object) const {
+  auto it = checked_.find(object.layout);
+  return it == checked_.end() ? kNoObject : it->second;
+}
+
 bool Evaluator::is_path_expression(const Document& doc, ExprId expr) {
   const Expr* e = &doc.expr(expr);
   while (e->kind == ExprKind::Member || e->kind == ExprKind::Index) e = &doc.expr(e->operands[0]);
@@ -829,11 +991,15 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
         return entity;
       }
     }
-    std::vector<std::string> members;
-    if (scope.self != kNoObject) {
-      for (const Slot& s : graph_.at(scope.self).slots) members.emplace_back(s.name);
-    }
-    Symbol symbol = program_.lookup(scope.doc, e.text, e.range, true, &members);
+    // The instance's attribute names are suggestions only for a name nothing knows.
+    auto members = [&] {
+      std::vector<std::string> names;
+      if (scope.self != kNoObject) {
+        for (const Slot& s : graph_.at(scope.self).slots) names.emplace_back(s.name);
+      }
+      return names;
+    };
+    Symbol symbol = program_.lookup(scope.doc, e.text, e.range, true, members);
     if (!symbol) {
       entity.value = Value::error();
       return entity;
@@ -1292,51 +1458,67 @@ Value Evaluator::eval_call(const Expr& call, const Scope& scope) {
                      call.range);
 }
 
+const Evaluator::PreparedMethod& Evaluator::prepare(ModelInfo* owner, const MethodInfo& method) {
+  auto [it, fresh] = prepared_methods_.try_emplace(&method);
+  PreparedMethod& p = it->second;
+  if (!fresh) return p;
+  const Member& m = *method.member;
+  p.qualified = owner->qualified + "." + std::string(m.path.parts[0].text);
+  for (const Param& param : m.params) p.params.push_back(resolve_type_ref(owner->doc, param.type));
+  if (m.return_type) p.result = resolve_type_ref(owner->doc, *m.return_type);
+  p.native = NativeRegistry::global().find(p.qualified);
+  p.renamed = renamed_method(p.qualified);
+  return p;
+}
+
 Value Evaluator::call_method(ModelInfo* owner, const MethodInfo& method, std::optional<Value> self,
                              std::vector<ExprId> args, const Scope& scope, SourceRange where) {
   const Member& m = *method.member;
-  const std::string name(m.path.parts[0].text);
-  const std::string qualified = owner->qualified + "." + name;
+  const std::string_view name = m.path.parts[0].text;
   if (!m.is_static && !self) {
     sink_.report(DiagCode::StaticMismatch, where,
-                 "Non-static method " + name + " called on type " + owner->qualified);
+                 "Non-static method " + std::string(name) + " called on type " + owner->qualified);
     return Value::error();
   }
   if (!m.return_type) {
     sink_.report(DiagCode::VoidMethodCall, where,
-                 "Method " + name + " has no return value and cannot be called");
+                 "Method " + std::string(name) + " has no return value and cannot be called");
     return Value::error();
   }
   if (args.size() != m.params.size()) {
     sink_.report(DiagCode::WrongArgumentCount, where,
-                 "Wrong number of arguments to " + name + ": expected " + std::to_string(m.params.size()) +
-                     ", got " + std::to_string(args.size()));
+                 "Wrong number of arguments to " + std::string(name) + ": expected " +
+                     std::to_string(m.params.size()) + ", got " + std::to_string(args.size()));
     return Value::error();
   }
+  // Names, types and the native of a method are the same at every call: worked out once.
+  const PreparedMethod& prepared = prepare(owner, method);
   std::vector<Value> values;
+  values.reserve(args.size() + 1);
   if (!m.is_static) values.push_back(*self);
   for (size_t i = 0; i < args.size(); ++i) {
-    const Type param = resolve_type_ref(owner->doc, m.params[i].type);
+    const Type& param = prepared.params[i];
     Value v = eval(args[i], scope, &param);
-    v = convert(std::move(v), param, scope.doc->doc.expr(args[i]).range,
-                [&] { return "argument `" + std::string(m.params[i].name.text) + "` of " + name; });
+    v = convert(std::move(v), param, scope.doc->doc.expr(args[i]).range, [&] {
+      return "argument `" + std::string(m.params[i].name.text) + "` of " + std::string(name);
+    });
     if (v.is_error()) return v;
     values.push_back(std::move(v));
   }
-  if (std::optional<std::string_view> current = renamed_method(qualified)) {
-    sink_.report(DiagCode::DeprecatedName, where,
-                 "`" + qualified + "` is the pre-0.10 name; use `" + std::string(*current) + "`");
+  if (prepared.renamed) {
+    sink_.report(
+        DiagCode::DeprecatedName, where,
+        "`" + prepared.qualified + "` is the pre-0.10 name; use `" + std::string(*prepared.renamed) + "`");
   }
-  const NativeFunction* fn = NativeRegistry::global().find(qualified);
-  if (!fn) {
-    sink_.report(DiagCode::NoImplementation, where, "No implementation for method " + qualified);
+  if (!prepared.native) {
+    sink_.report(DiagCode::NoImplementation, where, "No implementation for method " + prepared.qualified);
     return Value::error();
   }
   NativeCall call(*this, where);
-  Value result = (*fn)(call, values);
+  Value result = (*prepared.native)(call, values);
   if (call.poisoned()) return Value::error();
-  const Type ret = resolve_type_ref(owner->doc, *m.return_type);
-  return convert(std::move(result), ret, where, [&] { return "the result of " + qualified; });
+  return convert(std::move(result), prepared.result, where,
+                 [&] { return "the result of " + prepared.qualified; });
 }
 
 // ------------------------------------------------------------------------------------------- natives

@@ -74,6 +74,13 @@ class Evaluator {
   ObjectId instantiate_root(ModelInfo* model);
   // Evaluates every attribute of the tree under `root`, reporting incomplete models.
   void evaluate_all(ObjectId root);
+  // Checks the tree under `root` as evaluate_all would, evaluating far less: instances that share a slot
+  // layout are bound by the same entries, so the first instance of each layout is evaluated in full and the
+  // others are left to be evaluated when something reads them. Every instance of a layout whose check
+  // reported anything (there or anywhere below it) is evaluated in full, so each reports at its own path.
+  void evaluate_layouts(ObjectId root);
+  // The instance of `object`'s layout that evaluate_layouts evaluated in full; kNoObject when none was.
+  ObjectId checked_instance(const Object& object) const;
   // The value of one attribute (evaluated on first use).
   const Value& value(ObjectId object, uint32_t slot);
   const Value* value(ObjectId object, std::string_view slot);
@@ -111,11 +118,23 @@ class Evaluator {
   };
   struct Level {
     ObjectId object;
-    std::string rel;  // path from this ancestor to the object being built, joined with '.'
+    std::string rel;        // path from this ancestor to the object being built, joined with '.'
+    bool left_out = false;  // its entries are laid over the layout afterwards (overlay_assignments)
   };
 
   ObjectId new_object(ModelInfo* type, ObjectId owner, std::string name);
+  bool owns_transitively(ObjectId owner, ObjectId id) const;
   void build_slots(ObjectId id);
+  // Whether `type`'s entries at `rel` only assign values to attributes (no declarations, `becomes`, `with`,
+  // annotations or entries on parts): such entries bind an instance without changing its layout.
+  bool assigns_only(const ModelInfo* type, const std::string& rel) const;
+  // Gives `id` the slots of the layout `key`, built now (without the entries of `left_out` levels) if new.
+  bool use_layout(ObjectId id, std::string key, const std::vector<ObjectId>& chain, uint32_t own_level,
+                  const std::vector<std::pair<uint32_t, std::string>>& left_out);
+  // Binds `id`'s attributes to the assignments of the `overlays` levels; false (nothing changed) when one
+  // is aimed at an attribute the layout lacks.
+  bool overlay_assignments(ObjectId id, const std::vector<ObjectId>& chain,
+                           const std::vector<std::pair<uint32_t, std::string>>& overlays);
   void build_slots_from(ObjectId id, const std::vector<Level>& levels);
   // How many levels below its own instance a model's entries reach (0: only its own attributes).
   uint32_t reach(const ModelInfo* type);
@@ -139,6 +158,10 @@ class Evaluator {
   void evaluate_slot(ObjectId id, uint32_t slot_index);
   Value owned_default(ObjectId id, Slot& slot);
   void adopt(ObjectId child, ObjectId owner, const std::string& name, uint32_t level);
+  // Whether an enclosing model's entries aim at `id` or its parts.
+  bool reached_by_entries(ObjectId id) const;
+  // A free object's subtree (itself and the values preset in it) placed `levels` below the root.
+  void move_free_subtree(ObjectId id, uint32_t levels);
   ObjectId singleton(ModelInfo* model);
   Value global_value(GlobalInfo* global);
   std::string slot_path(ObjectId id, std::string_view slot) const;
@@ -147,6 +170,14 @@ class Evaluator {
   Entity eval_entity(ExprId expr, const Scope& scope);
   Value member_of(const Value& object, std::string_view name, SourceRange where);
   Value eval_call(const Expr& call, const Scope& scope);
+  struct PreparedMethod {
+    std::string qualified;  // "Math.Vec3.from_xyz"
+    std::vector<Type> params;
+    Type result;
+    const NativeFunction* native = nullptr;
+    std::optional<std::string_view> renamed;  // its current name, when this one is a pre-0.10 name
+  };
+  const PreparedMethod& prepare(ModelInfo* owner, const MethodInfo& method);
   Value call_method(ModelInfo* owner_type, const MethodInfo& method, std::optional<Value> self,
                     std::vector<ExprId> args, const Scope& scope, SourceRange where);
   Value eval_binary(const Expr& e, const Scope& scope, const Type* expected);
@@ -174,14 +205,20 @@ class Evaluator {
       declared_types_;  // a declaration's type resolves the same everywhere  // one message per wrong entry,
                         // however many instances
   int eval_depth_ = 0;
+  std::unordered_map<const MethodInfo*, PreparedMethod> prepared_methods_;
+  std::unordered_map<uint32_t, ObjectId> checked_;  // layout -> its instance evaluated in full
+  std::unordered_set<uint32_t> noisy_;              // layouts whose check reported something
   // Slot layouts shared by instances of one type reached by the same enclosing entries (see build_slots).
   struct Layout {
     ModelInfo* type = nullptr;  // after `with` lines of enclosing blocks
     uint32_t own_level = 0;     // the level of the instance it was built for (bindings' levels count from it)
     std::vector<Slot> slots;
     std::shared_ptr<const SlotIndex> index;
+    uint32_t id = 0;
   };
+  void copy_layout(ObjectId id, const Layout& layout, const std::vector<ObjectId>& chain, uint32_t own_level);
   std::unordered_map<std::string, Layout> layouts_;
+  uint32_t next_layout_ = 1;
   std::unordered_map<const ModelInfo*, uint32_t> reach_;
   std::vector<ObjectId> chain_;      // build_slots' ancestor chain
   std::deque<Type> narrowed_types_;  // types `becomes` gave slots (slots point at them)

@@ -59,6 +59,7 @@ struct Object {
   uint32_t depth = 0;
   const Entry* created_by = nullptr;  // the declaration of the owning attribute, for owned defaults
   bool is_const_singleton = false;
+  uint32_t layout = 0;  // instances with one layout have the same slots bound by the same entries
   std::vector<Slot> slots;
   std::shared_ptr<const SlotIndex> index;
 

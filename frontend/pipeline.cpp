@@ -45,7 +45,7 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
   result.evaluator = std::make_unique<Evaluator>(*result.program, sink);
   run_with_large_stack([&] {
     result.root = result.evaluator->instantiate_root(root_model);
-    if (result.root != kNoObject) result.evaluator->evaluate_all(result.root);
+    if (result.root != kNoObject) result.evaluator->evaluate_layouts(result.root);
   });
   return result;
 }

@@ -341,7 +341,7 @@ Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRang
 }
 
 Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange where, bool report,
-                       const std::vector<std::string>* extra) {
+                       const std::function<std::vector<std::string>()>& extra) {
   if (Symbol s = lookup_in(doc->ns, name)) return s;
   if (auto it = doc->import_models.find(name); it != doc->import_models.end()) return Symbol{it->second};
   if (auto it = doc->import_namespaces.find(name); it != doc->import_namespaces.end()) {
@@ -378,7 +378,10 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
   if (report) {
     std::string message = "Unknown name " + std::string(name);
     std::vector<std::string> candidates = names_visible_from(doc);
-    if (extra) candidates.insert(candidates.end(), extra->begin(), extra->end());
+    if (extra) {
+      std::vector<std::string> more = extra();
+      candidates.insert(candidates.end(), more.begin(), more.end());
+    }
     std::string near = suggestion(name, candidates);
     if (!near.empty()) message += "; did you mean `" + near + "`?";
     sink_.report(DiagCode::UnknownName, where, message);

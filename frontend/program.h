@@ -8,6 +8,7 @@
 #pragma once
 
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -133,8 +134,9 @@ class Program {
 
   // Name lookup for a name written in `doc`: its scope, the bundle root, then bundle names.
   // `extra` adds candidates (the scope's attribute names) to the "did you mean" of an unknown name.
+  // `extra` lists more names for the "did you mean" of an unknown name; it runs only then.
   Symbol lookup(DocumentInfo* doc, std::string_view name, SourceRange where, bool report = true,
-                const std::vector<std::string>* extra = nullptr);
+                const std::function<std::vector<std::string>()>& extra = {});
   // A member of a namespace (loads it on first use). With `where`, a 0.17.8 name is reported there as
   // deprecated.
   Symbol lookup_in(Namespace* ns, std::string_view name, const SourceRange* where = nullptr);

@@ -1,4 +1,6 @@
 #include "snap/resolve_system.h"
+
+#include "frontend/large_stack.h"
 #include "snap/unread_attributes.h"
 
 #include <filesystem>
@@ -268,11 +270,49 @@ class SystemBuilder {
       case Role::Kind::None:
         break;
     }
-    // Children pushed last first, so the stack pops them in declaration order.
-    const std::vector<fe::Slot>& slots = ev_.graph().at(id).slots;
-    for (auto it = slots.rbegin(); it != slots.rend(); ++it) {
-      if (it->owns && it->value.kind == fe::Value::Kind::Object) stack.push_back({it->value.object, node});
+    // Children pushed last first, so the stack pops them in declaration order. The evaluator left most
+    // instances unevaluated (Evaluator::evaluate_layouts): a part is made here when it can hold anything
+    // this view maps.
+    for (uint32_t k = static_cast<uint32_t>(ev_.graph().at(id).slots.size()); k-- > 0;) {
+      if (ev_.graph().at(id).slots[k].state == fe::Slot::State::Pending && holds_parts(id, k))
+        ev_.value(id, k);
+      const fe::Slot& slot = ev_.graph().at(id).slots[k];
+      if (slot.owns && slot.value.kind == fe::Value::Kind::Object) stack.push_back({slot.value.object, node});
     }
+  }
+
+  // Whether the owned part slot `k` of `id` would make can hold anything with a role: answered on the
+  // instance of its layout that was evaluated in full, once per layout and slot.
+  bool holds_parts(fe::ObjectId id, uint32_t k) {
+    const fe::Object& obj = ev_.graph().at(id);
+    const fe::Slot& slot = obj.slots[k];
+    if (!slot.type || slot.type->kind != fe::TypeKind::Model || slot.type->is_array || slot.optional)
+      return false;                       // no owned part (arrays and references are not parts)
+    if (slot.entries_below) return true;  // entries on its parts may add anything
+    const fe::ObjectId checked = ev_.checked_instance(obj);
+    if (checked == fe::kNoObject || checked == id) return true;
+    auto [it, fresh] = holds_parts_.try_emplace({obj.layout, k}, true);  // true while being decided
+    if (!fresh) return it->second;
+    const fe::Slot& model = ev_.graph().at(checked).slots[k];
+    const bool holds =
+        model.state != fe::Slot::State::Done ||
+        (model.owns && model.value.kind == fe::Value::Kind::Object && subtree_has_roles(model.value.object));
+    holds_parts_[{obj.layout, k}] = holds;
+    return holds;
+  }
+
+  bool subtree_has_roles(fe::ObjectId id) {
+    const fe::Object& obj = ev_.graph().at(id);
+    const Role role = role_of(obj.type);
+    if (role.kind != Role::Kind::None || role.unsupported) return true;
+    for (uint32_t k = 0; k < obj.slots.size(); ++k) {
+      const fe::Slot& slot = obj.slots[k];
+      if (slot.state == fe::Slot::State::Pending ? holds_parts(id, k)
+                                                 : slot.owns && slot.value.kind == fe::Value::Kind::Object &&
+                                                       subtree_has_roles(slot.value.object))
+        return true;
+    }
+    return false;
   }
 
   // What a model is to the view, decided once per model (a large tree has few models and many objects).
@@ -1015,6 +1055,7 @@ class SystemBuilder {
   std::vector<std::pair<fe::ModelInfo*, Geometry::Shape>> shapes_;
   std::vector<std::pair<fe::ModelInfo*, Interaction1D::Kind>> kinds1d_;
   std::unordered_map<const fe::ModelInfo*, Role> roles_;
+  std::map<std::pair<uint32_t, uint32_t>, bool> holds_parts_;
   fe::ModelInfo* shaft_ = nullptr;
   fe::ModelInfo* torque_motor1d_ = nullptr;
   fe::ModelInfo* clutch_ = nullptr;
@@ -1075,7 +1116,9 @@ frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::Ob
 ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,
                               frontend::DiagnosticSink& sink) {
   evaluator.track_reads(true);  // what the builder reads is what the pipeline honours
-  ResolvedSystem system = SystemBuilder(evaluator, sink).build(root);
+  ResolvedSystem system;
+  // Reading evaluates what the evaluator left for later: on its stack, as evaluation always runs.
+  frontend::run_with_large_stack([&] { system = SystemBuilder(evaluator, sink).build(root); });
   evaluator.track_reads(false);
   warn_unread_attributes(evaluator, root, system, sink);
   return system;

@@ -45,6 +45,14 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
   std::set<fe::ObjectId> left_out;  // warned whole ("it and its parts were left out")
   for (const Unsupported& u : system.unsupported) left_out.insert(u.object);
   const std::vector<signed char> mapped = reachable(graph, root, left_out);
+  // An assignment is honoured when it was read in any instance it binds: instances that share their
+  // entries are evaluated only as far as something reads them (Evaluator::evaluate_layouts).
+  std::set<const fe::Entry*> read;
+  for (size_t id = 0; id < graph.objects.size(); ++id) {
+    for (const fe::Slot& slot : graph.at(static_cast<fe::ObjectId>(id)).slots) {
+      if (slot.used && slot.binding.entry) read.insert(slot.binding.entry);
+    }
+  }
   std::set<const fe::Entry*> warned;  // one warning per assignment, however many instances share it
   for (size_t id = 0; id < graph.objects.size(); ++id) {
     if (mapped[id] != 1) continue;
@@ -58,7 +66,7 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
       // A bundle's attribute, assigned in the user's own text, that the resolver never looked at.
       if (!entry || entry->from_declaration || entry->kind != fe::Entry::Kind::Value) continue;
       if (!in_bundle(slot.declared_in) || in_bundle(slot.binding.model)) continue;
-      if (slot.used || !warned.insert(entry).second) continue;
+      if (read.count(entry) || !warned.insert(entry).second) continue;
       sink.report(fe::DiagCode::MjcfUnmapped, entry->member->range,
                   "`" + graph.path(static_cast<fe::ObjectId>(id)) + (id == root ? "" : ".") +
                       std::string(slot.name) + "` (" + slot.declared_in->qualified +

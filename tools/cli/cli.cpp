@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -98,8 +99,27 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   }
 }
 
+// OPENPLX_TIMINGS=1 prints each pass's wall-clock time to stderr: where a user's conversion time goes.
+class PassTimer {
+ public:
+  void lap(const char* pass, size_t objects = 0) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::cerr << "openplx2mjcf: " << pass << ' '
+              << std::chrono::duration<double, std::milli>(now - last_).count() << " ms";
+    if (objects) std::cerr << " (" << objects << " objects)";
+    std::cerr << '\n';
+    last_ = now;
+  }
+
+ private:
+  bool enabled_ = std::getenv("OPENPLX_TIMINGS") != nullptr;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
               std::ostream& text, std::string& manifest, std::ostream& err) {
+  PassTimer timer;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.input, ec)) {
     err << options.input << ": error: "
@@ -111,11 +131,17 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
   request.default_bundles = options.default_bundles;
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
+  timer.lap("load and evaluate", evaluation.evaluator ? evaluation.evaluator->graph().objects.size() : 0);
   if (evaluation.root == fe::kNoObject || sink.has_errors()) return true;
-  if (options.dump == DumpKind::Values) fe::dump_values(text, *evaluation.evaluator, evaluation.root);
+  if (options.dump == DumpKind::Values) {
+    evaluation.evaluator->evaluate_all(evaluation.root);  // every value printed, read or not
+    fe::dump_values(text, *evaluation.evaluator, evaluation.root);
+  }
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
   snap::ResolvedSystem view = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+  timer.lap("resolve system");
   const snap::SnapResult& assembled = snap::run_snap(view, sink);
+  timer.lap("snap");
   if (options.dump == DumpKind::Snap)
     snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
   if (options.dump != DumpKind::None || sink.has_errors()) return true;
@@ -130,8 +156,10 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
+  timer.lap("emit");
   if (sink.has_errors()) return true;
   const std::string xml = emitted.document.to_string();
+  timer.lap("print xml");
   if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
   if (options.output) text << xml;  // without -o the model is only checked
   manifest = std::move(emitted.manifest_json);
