@@ -203,6 +203,16 @@ void Lowering::emit_distance_interaction(Element& root, Element& actuators, cons
     warn(i.where, "`" + i.path + "` needs two connectors on different bodies; it was left out");
     return;
   }
+  // A connector of a nested system (a composite's end nobody bound, e.g. an actuator's) belongs to no body:
+  // MuJoCo holds it in the world, which is rarely what was meant.
+  for (const int c : {a, b}) {
+    const int owner = view_.connectors[c].owner;
+    if (owner >= 0 && owner != view_.root && !is_body(owner)) {
+      warn(i.where, "`" + i.path + "` acts on `" + view_.connectors[c].path + "`, which belongs to `" +
+                        view_.nodes[owner].path +
+                        "`, not to a body: that end is fixed in the world (bind it to a body's connector)");
+    }
+  }
   const bool range = i.kind == sn::Interaction1D::Kind::DistanceRange;
   if (range && (!(i.end > i.start) || i.start < 0)) {
     warn(i.where, "`" + i.path + "` has no distance range (start " + number(i.start) + ", end " +
@@ -227,6 +237,7 @@ void Lowering::emit_distance_interaction(Element& root, Element& actuators, cons
       inverse_mass += 1 / std::max(body_mass_.count(n) ? body_mass_.at(n).mass : 1.0, 1e-9);
   }
   const double kv = inverse_mass > 0 ? 0.5 / (inverse_mass * options_.timestep) : 0.0;
+  if (kv == 0) warn(i.where, "`" + i.path + "` joins two ends neither of which can move: it drives nothing");
   Element& motor = actuators.add("general");
   motor.set("name", name(i.path))
       .set("tendon", name(i.path))
