@@ -1,6 +1,7 @@
 #include "snap/unread_attributes.h"
 
 #include <set>
+#include <unordered_set>
 #include <vector>
 
 namespace openplx::snap {
@@ -47,10 +48,10 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
   const std::vector<signed char> mapped = reachable(graph, root, left_out);
   // An assignment is honoured when it was read in any instance it binds: instances that share their
   // entries are evaluated only as far as something reads them (Evaluator::evaluate_layouts).
-  std::set<const fe::Entry*> read;
+  std::unordered_set<const fe::Entry*> read;
   for (size_t id = 0; id < graph.objects.size(); ++id) {
     for (const fe::Slot& slot : graph.at(static_cast<fe::ObjectId>(id)).slots) {
-      if (slot.used && slot.binding.entry) read.insert(slot.binding.entry);
+      if (slot.used && slot.binding.entry && !in_bundle(slot.binding.model)) read.insert(slot.binding.entry);
     }
   }
   std::set<const fe::Entry*> warned;  // one warning per assignment, however many instances share it

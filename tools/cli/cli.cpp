@@ -139,7 +139,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   }
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
   snap::ResolvedSystem view = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-  timer.lap("resolve system");
+  timer.lap("resolve system", evaluation.evaluator->graph().objects.size());
   const snap::SnapResult& assembled = snap::run_snap(view, sink);
   timer.lap("snap");
   if (options.dump == DumpKind::Snap)
