@@ -261,7 +261,7 @@ std::string manifest_json(std::string_view model_name, std::string_view prefix,
   using frontend::append_quoted;
   // Appended in place: a large model has tens of thousands of signals.
   std::string out;
-  out.reserve(64 + 320 * bindings.size());  // about what one binding takes: few reallocations
+  out.reserve(64 + 400 * bindings.size());  // a little over what one binding takes: one allocation
   out += "{\n  \"model\": ";
   append_quoted(out, model_name);
   out += ",\n  \"prefix\": ";

@@ -87,7 +87,8 @@ SteeringLinkage column_linkage(const SteeringGeometry& g, bool lever) {
     out.problem = "has tie rods along the vehicle (initial_angle_right_tie_rod must be within ±90°)";
     return out;
   }
-  Column c{knuckles(g)};
+  Column c;
+  c.k = knuckles(g);
   c.lever = lever;
   // Each tie rod runs inward from its arm end, sloping forward by the tie-rod angle, to the centre line
   // (BellCrank) or to the rack's end (RackAndPinion).

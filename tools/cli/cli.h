@@ -45,4 +45,7 @@ std::string manifest_path(const std::string& output);
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
+// For a process that exits right after run(): its model is left to the exit rather than freed.
+void end_process_after_run();
+
 }  // namespace openplx::cli
