@@ -7,7 +7,7 @@
 #   RUNS=N (default 7) sets hyperfine's runs per command.
 #
 # Models: 1,000 and 10,000 hinged boxes on the world (generated here), the README's wide tree of trunks with
-# nine branches (1,000 bodies) and small corpus models.
+# nine branches (1,000 bodies), small corpus models and two of bullet3's URDF robots.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -106,6 +106,9 @@ tree 1000 "$work/tree1000.openplx"
 measure "wide tree, 1,000 bodies" "$work/tree1000.openplx"
 for small in signal_test simpler_inverted_pendulum; do
   measure "corpus $small" "tests/corpus/agxunity/$small.openplx"
+done
+for robot in r2d2 kuka_iiwa/model; do
+  measure "URDF $robot" "tests/corpus/urdf/bullet3/$robot.urdf"
 done
 echo
 awk -v a="$t1000" -v b="$t10000" 'BEGIN {

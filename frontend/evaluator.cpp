@@ -352,7 +352,7 @@ void Evaluator::build_slots(ObjectId id) {
   // The others with the same entries copy the result.
   const Object& built = graph_.at(id);
   Layout& layout = layouts_[std::move(full_key)];
-  layout = {built.type, own_level, built.slots, built.index, next_layout_++};
+  layout = {built.type, own_level, built.slots, built.index, built.infos, next_layout_++};
   graph_.at(id).layout = layout.id;
 }
 
@@ -368,6 +368,7 @@ void Evaluator::copy_layout(ObjectId id, const Layout& l, const std::vector<Obje
     b.self = chain[b.level];
   }
   obj.index = l.index;
+  obj.infos = l.infos;
   obj.layout = l.id;
 }
 
@@ -384,7 +385,7 @@ bool Evaluator::use_layout(ObjectId id, std::string key, const std::vector<Objec
   for (const auto& [level, rel] : left_out) levels[level].left_out = true;
   build_slots_from(id, levels);
   Object& built = graph_.at(id);
-  layout->second = {built.type, own_level, built.slots, built.index, next_layout_++};
+  layout->second = {built.type, own_level, built.slots, built.index, built.infos, next_layout_++};
   built.layout = layout->second.id;
   return true;
 }
@@ -446,6 +447,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
   Object& obj = graph_.at(id);
   auto index = std::make_shared<SlotIndex>();
   obj.index = index;
+  std::vector<SlotInfo> infos;  // beside obj.slots, index for index; shared by the layout once built
   auto add_slot = [&](const Entry& e, ModelInfo* model) {
     const std::string_view name = e.path.back();
     if (index->count(name)) {
@@ -453,13 +455,14 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
                    "Duplicate attribute name " + std::string(name) + " in " + obj.type->qualified);
       return;
     }
-    Slot slot;
-    slot.name = name;
-    slot.declaration = &e;
-    slot.declared_in = model;
-    slot.optional = e.member->is_optional || e.member->is_reference;  // a reference nobody set stays unset
+    SlotInfo info;
+    info.name = name;
+    info.declaration = &e;
+    info.declared_in = model;
+    info.optional = e.member->is_optional || e.member->is_reference;  // a reference nobody set stays unset
     index->emplace(name, static_cast<uint32_t>(obj.slots.size()));
-    obj.slots.push_back(std::move(slot));
+    infos.push_back(std::move(info));
+    obj.slots.emplace_back();
   };
   // Declaration order: the root-most base first, then traits, then the model itself...
   const auto& lin = obj.type->linearization;
@@ -488,7 +491,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
       continue;
     }
     std::vector<std::string> names;
-    for (const Slot& s : obj.slots) names.emplace_back(s.name);
+    for (const SlotInfo& s : infos) names.emplace_back(s.name);
     std::string message = "Unknown attribute " + std::string(e.path.back()) + " in " + obj.type->qualified;
     std::string near = Program::suggestion(e.path.back(), names);
     if (!near.empty()) message += "; did you mean `" + near + "`?";
@@ -497,12 +500,14 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
                  message);
   }
   // Types, `becomes`, bindings and annotations.
-  for (Slot& slot : obj.slots) {
+  for (size_t k = 0; k < obj.slots.size(); ++k) {
+    Slot& slot = obj.slots[k];
+    SlotInfo& info = infos[k];
     // The entries that may bind this attribute: its own name's, and those written with its 0.17.8 name.
-    const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name);
+    const std::vector<uint32_t> mine = candidates(targeting, obj, info.name);
 
-    const Type& declared = declared_type(*slot.declaration, slot.declared_in);
-    slot.type = &declared;
+    const Type& declared = declared_type(*info.declaration, info.declared_in);
+    info.type = &declared;
     std::vector<Binding> all_becomes;
     for (uint32_t k : mine) {
       const Binding& b = ordered[k];
@@ -517,7 +522,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
       bool compatible = false;
       if (old.is_primitive() && old.kind != TypeKind::Error) {
         sink_.report(DiagCode::IncompatibleBecomes, becomes.entry->member->path.range,
-                     "Cannot specialise primitive attribute " + std::string(slot.name));
+                     "Cannot specialise primitive attribute " + std::string(info.name));
         narrowed = {};
       } else if (narrowed.kind == TypeKind::Model && old.kind == TypeKind::Model) {
         compatible = narrowed.is_array == old.is_array && narrowed.model->is_subtype_of(old.model);
@@ -532,10 +537,10 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
                      "Type " + narrowed.describe() + " is not compatible with " + old.describe());
         narrowed = {};
       }
-      slot.type = &narrowed_types_.emplace_back(std::move(narrowed));
+      info.type = &narrowed_types_.emplace_back(std::move(narrowed));
     }
     slot.binding = pick_value(targeting, mine, true);
-    auto part = targeting.below.find(slot.name);
+    auto part = targeting.below.find(info.name);
     slot.entries_below = part != targeting.below.end();
     slot.explicit_value = (slot.binding.entry && slot.binding.entry->kind == Entry::Kind::Value) ||
                           (slot.entries_below && part->second);
@@ -545,11 +550,14 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     const Entry& e = *it->first;
     auto slot = obj.index->find(e.path[e.path.size() - 2]);
     if (slot != obj.index->end()) {
-      auto& annotations = obj.slots[slot->second].annotations;
+      auto& annotations = infos[slot->second].annotations;
       if (!annotations) annotations = std::make_shared<std::map<std::string, AnnotationValue, std::less<>>>();
       (*annotations)[std::string(e.path.back())] = {*e.value, &it->second->doc->doc};
     }
   }
+  auto shared = std::make_shared<const std::vector<SlotInfo>>(std::move(infos));
+  for (size_t k = 0; k < obj.slots.size(); ++k) obj.slots[k].info = &(*shared)[k];
+  obj.infos = std::move(shared);
 }
 
 const Type& Evaluator::declared_type(const Entry& declaration, ModelInfo* model) {
@@ -643,7 +651,7 @@ void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, u
   Object& obj = graph_.at(child);
   for (uint32_t i = 0; i < obj.slots.size(); ++i) {
     Slot& slot = obj.slots[i];
-    const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name);
+    const std::vector<uint32_t> mine = candidates(targeting, obj, slot.name());
     Binding assigned = pick_value(targeting, mine, false);
     if (slot.preset) {
       if (assigned.entry && assigned.level <= level) {
@@ -652,7 +660,7 @@ void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, u
         slot.preset = false;
         slot.owns = false;
       } else if (slot.owns) {
-        adopt(slot.value.object, child, std::string(slot.name), level);
+        adopt(slot.value.object, child, std::string(slot.name()), level);
       }
     } else if (slot.state == Slot::State::Pending) {
       slot.binding = pick_value(targeting, mine, true);
@@ -703,17 +711,17 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   Slot* slot = &graph_.at(id).slots[slot_index];
   if (slot->state == Slot::State::Done) return;
   const SourceRange where =
-      slot->binding.entry ? slot->binding.entry->member->range : slot->declaration->member->range;
+      slot->binding.entry ? slot->binding.entry->member->range : slot->declaration()->member->range;
   if (slot->state == Slot::State::Evaluating) {
     sink_.report(DiagCode::CyclicDependency, where,
-                 "Cyclic dependency detected at " + slot_path(id, slot->name));
+                 "Cyclic dependency detected at " + slot_path(id, slot->name()));
     slot->value = Value::error();
     slot->state = Slot::State::Done;
     return;
   }
   if (eval_depth_ >= kMaxEvalDepth) {
     sink_.report(DiagCode::EvaluationTooDeep, where,
-                 "evaluating " + slot_path(id, slot->name) + " needs a chain of more than " +
+                 "evaluating " + slot_path(id, slot->name()) + " needs a chain of more than " +
                      std::to_string(kMaxEvalDepth) + " dependent attributes");
     slot->value = Value::error();
     slot->state = Slot::State::Done;
@@ -723,11 +731,11 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
   ++eval_depth_;
   Value result;
   bool owns = false;
-  const Type& type = *slot->type;
+  const Type& type = *slot->type();
   if (type.kind == TypeKind::Error) {
     result = Value::error();
   } else if (!slot->binding.entry) {
-    if (slot->optional) {
+    if (slot->optional()) {
       // stays unset, whatever its type (spec §5.1)
     } else if (type.is_array) {
       result = Value::of_array({});  // an array nobody assigned is empty
@@ -736,8 +744,8 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
       slot = &graph_.at(id).slots[slot_index];
       owns = result.kind == Value::Kind::Object && graph_.at(result.object).owner == id;
     } else {
-      sink_.report(DiagCode::MissingAssignment, slot->declaration->member->range,
-                   "Missing assignment " + slot_path(id, slot->name) + ", owning model is not complete");
+      sink_.report(DiagCode::MissingAssignment, slot->declaration()->member->range,
+                   "Missing assignment " + slot_path(id, slot->name()) + ", owning model is not complete");
       result = Value::error();
     }
   } else {
@@ -749,28 +757,28 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
     slot = &graph_.at(id).slots[slot_index];
     if (v.kind == Value::Kind::Object && graph_.at(v.object).owner == kNoObject &&
         !graph_.at(v.object).is_const_singleton && !path) {
-      adopt(v.object, id, std::string(slot->name), binding.level);
+      adopt(v.object, id, std::string(slot->name()), binding.level);
       slot = &graph_.at(id).slots[slot_index];
       owns = true;
     }
     result = convert(std::move(v), type, binding.model->doc->doc.expr(expr).range,
-                     [&] { return slot_path(id, graph_.at(id).slots[slot_index].name); });
+                     [&] { return slot_path(id, graph_.at(id).slots[slot_index].name()); });
   }
   slot = &graph_.at(id).slots[slot_index];
   // Assignments to parts of a reference or of a primitive have nowhere to go.
   if (!owns && !result.is_error() && slot->entries_below) {
-    const Entry* e = entry_below(id, slot->name);
+    const Entry* e = entry_below(id, slot->name());
     if (e && result.kind == Value::Kind::Object && graph_.at(result.object).is_const_singleton) {
       sink_.report(DiagCode::ConstAssignment, e->member->range,
                    "Cannot assign to attribute of const model " + graph_.at(result.object).type->qualified);
       result = Value::error();
     } else if (e && result.kind == Value::Kind::Object) {
       sink_.report(DiagCode::AssignThroughReference, e->member->range,
-                   "Cannot assign through reference " + std::string(slot->name));
+                   "Cannot assign through reference " + std::string(slot->name()));
       result = Value::error();
     } else if (e) {
       sink_.report(DiagCode::UnknownAttribute, e->member->range,
-                   "`" + std::string(slot->name) + "` is " + type.describe() + " and has no attributes");
+                   "`" + std::string(slot->name()) + "` is " + type.describe() + " and has no attributes");
       result = Value::error();
     }
   }
@@ -781,10 +789,10 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
 }
 
 Value Evaluator::owned_default(ObjectId id, Slot& slot) {
-  ModelInfo* model = slot.type->model;
+  ModelInfo* model = slot.type()->model;
   if (model->is_trait) {
-    sink_.report(DiagCode::CannotInstantiateTrait, slot.declaration->member->range,
-                 "Cannot instantiate trait " + model->qualified + " for " + slot_path(id, slot.name) +
+    sink_.report(DiagCode::CannotInstantiateTrait, slot.declaration()->member->range,
+                 "Cannot instantiate trait " + model->qualified + " for " + slot_path(id, slot.name()) +
                      "; assign a reference to an instance that includes it");
     return Value::error();
   }
@@ -799,18 +807,18 @@ Value Evaluator::owned_default(ObjectId id, Slot& slot) {
   }
   if (repeats >= kMaxTypeRepeats || graph_.at(id).depth + 1 > kMaxInstanceDepth ||
       graph_.objects.size() >= kMaxObjects) {
-    sink_.report(DiagCode::EvaluationTooDeep, slot.declaration->member->range,
+    sink_.report(DiagCode::EvaluationTooDeep, slot.declaration()->member->range,
                  graph_.objects.size() >= kMaxObjects
                      ? "the model needs more than " + std::to_string(kMaxObjects) + " instances at " +
-                           slot_path(id, slot.name)
-                     : "the instance tree does not end at " + slot_path(id, slot.name) + ": " +
+                           slot_path(id, slot.name())
+                     : "the instance tree does not end at " + slot_path(id, slot.name()) + ": " +
                            model->qualified + " contains itself (" + std::to_string(repeats) +
                            " nested owned instances)");
     return Value::error();
   }
-  const std::string name(slot.name);
+  const std::string name(slot.name());
   const ObjectId child = new_object(model, id, name);
-  graph_.at(child).created_by = slot.declaration;
+  graph_.at(child).created_by = slot.declaration();
   return Value::of_object(child);
 }
 
@@ -995,7 +1003,7 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
     auto members = [&] {
       std::vector<std::string> names;
       if (scope.self != kNoObject) {
-        for (const Slot& s : graph_.at(scope.self).slots) names.emplace_back(s.name);
+        for (const Slot& s : graph_.at(scope.self).slots) names.emplace_back(s.name());
       }
       return names;
     };
@@ -1090,7 +1098,7 @@ Value Evaluator::member_of(const Value& object, std::string_view name, SourceRan
   }
   if (it == obj.index->end()) {
     std::vector<std::string> names;
-    for (const Slot& s : obj.slots) names.emplace_back(s.name);
+    for (const Slot& s : obj.slots) names.emplace_back(s.name());
     std::string message = "Unknown attribute " + std::string(name) + " in " + obj.type->qualified;
     std::string near = Program::suggestion(name, names);
     if (!near.empty()) message += "; did you mean `" + near + "`?";
@@ -1224,9 +1232,9 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
   // (`{Sensors.Signals.TriaxialOutputField.X_F64, logic.accelerometer_logic}`).
   for (uint32_t i = 0; i < graph_.at(object).slots.size(); ++i) {
     const Slot& slot = graph_.at(object).slots[i];
-    const bool reference = slot.declaration && slot.declaration->member->is_reference;
-    if ((slot.type->is_primitive() || reference) && !slot.type->is_array &&
-        slot.type->kind != TypeKind::Error)
+    const bool reference = slot.declaration() && slot.declaration()->member->is_reference;
+    if ((slot.type()->is_primitive() || reference) && !slot.type()->is_array &&
+        slot.type()->kind != TypeKind::Error)
       fields.push_back(i);
   }
   if (e.operands.size() != fields.size()) {
@@ -1236,9 +1244,9 @@ Value Evaluator::eval_initializer(const Expr& e, const Scope& scope, const Type*
     return Value::error();
   }
   for (size_t i = 0; i < fields.size(); ++i) {
-    const Type field_type = *graph_.at(object).slots[fields[i]].type;
+    const Type field_type = *graph_.at(object).slots[fields[i]].type();
     Value v = eval(e.operands[i], scope, &field_type);
-    const std::string field_name(graph_.at(object).slots[fields[i]].name);
+    const std::string field_name(graph_.at(object).slots[fields[i]].name());
     v = convert(std::move(v), field_type, scope.doc->doc.expr(e.operands[i]).range,
                 [&] { return model->qualified + "." + field_name; });
     if (v.is_error()) return v;

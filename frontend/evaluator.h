@@ -214,6 +214,7 @@ class Evaluator {
     uint32_t own_level = 0;     // the level of the instance it was built for (bindings' levels count from it)
     std::vector<Slot> slots;
     std::shared_ptr<const SlotIndex> index;
+    std::shared_ptr<const std::vector<SlotInfo>> infos;
     uint32_t id = 0;
   };
   void copy_layout(ObjectId id, const Layout& layout, const std::vector<ObjectId>& chain, uint32_t own_level);

@@ -30,13 +30,21 @@ struct AnnotationValue {
   const Document* doc = nullptr;
 };
 
-struct Slot {
+// What every instance of one layout shares about an attribute (see Slot).
+struct SlotInfo {
   std::string_view name;
   const Entry* declaration = nullptr;
   ModelInfo* declared_in = nullptr;
   const Type* type =
       nullptr;  // the declared type or the one `becomes` narrowed it to (owned by the Evaluator)
   bool optional = false;
+  // Annotations on the attribute (few have any).
+  std::shared_ptr<std::map<std::string, AnnotationValue, std::less<>>> annotations;
+};
+
+// One attribute of one instance: what its layout says of it (info, shared), and its own binding and value.
+struct Slot {
+  const SlotInfo* info = nullptr;
   Binding binding;              // the value's source; entry == nullptr when nothing binds it
   bool explicit_value = false;  // assigned (not a declaration default), itself or any part of it
   bool entries_below = false;   // some entry targets a part of it (an error unless it owns an instance)
@@ -45,8 +53,15 @@ struct Slot {
   bool preset = false;  // value given directly (initializer or native result), not by an entry
   bool used = false;    // read by an expression, a native or the pipeline (Evaluator::track_reads)
   Value value;
-  // Annotations on the attribute (few have any; shared by instances with one layout).
-  std::shared_ptr<std::map<std::string, AnnotationValue, std::less<>>> annotations;
+
+  std::string_view name() const { return info->name; }
+  const Entry* declaration() const { return info->declaration; }
+  ModelInfo* declared_in() const { return info->declared_in; }
+  const Type* type() const { return info->type; }
+  bool optional() const { return info->optional; }
+  const std::map<std::string, AnnotationValue, std::less<>>* annotations() const {
+    return info->annotations.get();
+  }
 };
 
 // Attribute name -> slot index. Instances whose layout comes from their type alone share one.
@@ -62,6 +77,7 @@ struct Object {
   uint32_t layout = 0;  // instances with one layout have the same slots bound by the same entries
   std::vector<Slot> slots;
   std::shared_ptr<const SlotIndex> index;
+  std::shared_ptr<const std::vector<SlotInfo>> infos;  // what the slots' info point at
 
   const Slot* find(std::string_view slot) const {
     auto it = index->find(slot);

@@ -46,8 +46,10 @@ struct Value {
   Kind kind = Kind::Unset;
   bool bool_value = false;
   ObjectId object = kNoObject;  // beside the two small fields: no padding
-  int64_t int_value = 0;
-  double real_value = 0.0;
+  union {                       // by kind: one number, never both
+    int64_t int_value = 0;
+    double real_value;
+  };
   std::string string_value;
   std::vector<Value> array;
 

@@ -115,8 +115,8 @@ void dump_values(std::ostream& out, Evaluator& evaluator, ObjectId root) {
     const Value& value = evaluator.value(id, index);
     const Slot& slot = evaluator.graph().at(id).slots[index];
     const std::string base = evaluator.graph().path(id);
-    out << (base.empty() ? "" : base + ".") << slot.name << " = " << format_value(evaluator, value, slot.owns)
-        << '\n';
+    out << (base.empty() ? "" : base + ".") << slot.name() << " = "
+        << format_value(evaluator, value, slot.owns) << '\n';
     if (slot.owns && value.kind == Value::Kind::Object &&
         !is_inline_type(evaluator.graph().at(value.object).type)) {
       stack.push_back({value.object, 0});

@@ -286,7 +286,7 @@ class SystemBuilder {
   bool holds_parts(fe::ObjectId id, uint32_t k) {
     const fe::Object& obj = ev_.graph().at(id);
     const fe::Slot& slot = obj.slots[k];
-    if (!slot.type || slot.type->kind != fe::TypeKind::Model || slot.type->is_array || slot.optional)
+    if (!slot.type() || slot.type()->kind != fe::TypeKind::Model || slot.type()->is_array || slot.optional())
       return false;                       // no owned part (arrays and references are not parts)
     if (slot.entries_below) return true;  // entries on its parts may add anything
     const fe::ObjectId checked = ev_.checked_instance(obj);
@@ -1106,8 +1106,8 @@ frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::Ob
     }
     const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
     if (!slot) return first;
-    if (at == id) first = slot->declaration->member->range;
-    if (!in_bundle(slot->declared_in)) return slot->declaration->member->range;
+    if (at == id) first = slot->declaration()->member->range;
+    if (!in_bundle(slot->declared_in())) return slot->declaration()->member->range;
     at = obj.owner;
   }
   return first;

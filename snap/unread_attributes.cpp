@@ -66,11 +66,11 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
       const fe::Entry* entry = slot.binding.entry;
       // A bundle's attribute, assigned in the user's own text, that the resolver never looked at.
       if (!entry || entry->from_declaration || entry->kind != fe::Entry::Kind::Value) continue;
-      if (!in_bundle(slot.declared_in) || in_bundle(slot.binding.model)) continue;
+      if (!in_bundle(slot.declared_in()) || in_bundle(slot.binding.model)) continue;
       if (read.count(entry) || !warned.insert(entry).second) continue;
       sink.report(fe::DiagCode::MjcfUnmapped, entry->member->range,
                   "`" + graph.path(static_cast<fe::ObjectId>(id)) + (id == root ? "" : ".") +
-                      std::string(slot.name) + "` (" + slot.declared_in->qualified +
+                      std::string(slot.name()) + "` (" + slot.declared_in()->qualified +
                       ") has no MuJoCo counterpart here; it was ignored");
     }
   }

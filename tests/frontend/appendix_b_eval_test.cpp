@@ -49,9 +49,9 @@ class AppendixBEval : public openplx::testing::EvalTest {
   std::string slot_annotation(const std::string& path, const std::string& name) {
     const fe::Slot* s = slot(path);
     if (!s) return "<no slot>";
-    if (!s->annotations) return "<none>";
-    auto it = s->annotations->find(name);
-    return it == s->annotations->end() ? "<none>" : constant(*it->second.doc, it->second.expr);
+    if (!s->annotations()) return "<none>";
+    auto it = s->annotations()->find(name);
+    return it == s->annotations()->end() ? "<none>" : constant(*it->second.doc, it->second.expr);
   }
   // The model annotation `name` of the root's type, or "<none>".
   std::string root_annotation(const std::string& name) {
@@ -118,7 +118,7 @@ TEST_F(AppendixBEval, Case06_IntLiteralIntoReal) {
   EXPECT_EQ(value("r"), "4.0");
   ASSERT_NE(slot("r"), nullptr);
   EXPECT_EQ(slot("r")->value.kind, fe::Value::Kind::Real);
-  EXPECT_EQ(slot("r")->type->kind, fe::TypeKind::Real);
+  EXPECT_EQ(slot("r")->type()->kind, fe::TypeKind::Real);
 }
 
 TEST_F(AppendixBEval, Case07_IntegralRealIntoInt) {
@@ -172,7 +172,7 @@ TEST_F(AppendixBEval, Case13_BacktickName) {
       << all_diags();
   const fe::Object& root = evaluator_->graph().at(root_);
   ASSERT_EQ(root.slots.size(), 1u);
-  EXPECT_EQ(root.slots[0].name, "a.b");
+  EXPECT_EQ(root.slots[0].name(), "a.b");
   const fe::Value* ab = evaluator_->value(root_, "a.b");
   ASSERT_NE(ab, nullptr);
   ASSERT_EQ(ab->kind, fe::Value::Kind::Object);
@@ -255,7 +255,7 @@ TEST_F(AppendixBEval, Case25_Optional) {
   ASSERT_TRUE(load("Root:\n    optional label is String\n    n is Int: 1\n")) << all_diags();
   EXPECT_EQ(value("label"), "unset");
   ASSERT_NE(slot("label"), nullptr);
-  EXPECT_TRUE(slot("label")->optional);
+  EXPECT_TRUE(slot("label")->optional());
   EXPECT_EQ(value("n"), "1");
 }
 
@@ -987,8 +987,8 @@ TEST_F(AppendixBEval, Case91_DeclaredOperator) {
   expect_diag(fe::DiagCode::NoImplementation, 7, 17);
   EXPECT_EQ(sink_.diagnostics().size(), 1u) << all_diags();
   ASSERT_NE(slot("t"), nullptr);
-  ASSERT_EQ(slot("t")->type->kind, fe::TypeKind::Model);
-  EXPECT_EQ(slot("t")->type->model->name, "Money");
+  ASSERT_EQ(slot("t")->type()->kind, fe::TypeKind::Model);
+  EXPECT_EQ(slot("t")->type()->model->name, "Money");
 }
 
 TEST_F(AppendixBEval, Case92_StaticCallOnInstance) {
