@@ -12,6 +12,7 @@
 
 #include "mjcf_emitter/steering_linkage.h"
 #include "openplx/runtime/simulation.h"
+#include "tests/support/front_axle.h"
 #include "tests/support/scratch_dir.h"
 
 namespace {
@@ -23,39 +24,10 @@ using Eigen::Vector2d;
 // A static chassis with two steered front wheels 1.6 m apart on soft suspensions, and `steering` (its
 // parameter lines under the steering's interaction).
 std::string car(const std::string& mechanism, const std::string& parameters) {
-  std::string text =
-      "Chassis is Physics3D.Bodies.RigidBody:\n"
-      "    is_dynamic: false\n"
-      "    box is Physics3D.Geometries.Box:\n"
-      "        size: {3, 0.6, 0.4}\n"
-      "    fl is Physics3D.Interactions.MateConnector:\n"
-      "        position: {1.2, 0.8, -0.2}\n"
-      "        main_axis: {0, 1, 0}\n"
-      "        normal: {0, 0, 1}\n"
-      "    fr is Physics3D.Interactions.MateConnector:\n"
-      "        position: {1.2, -0.8, -0.2}\n"
-      "        main_axis: {0, 1, 0}\n"
-      "        normal: {0, 0, 1}\n"
-      "Wheel is Vehicles.Wheels.Base:\n"
-      "    rim becomes Vehicles.Wheels.Rim:\n"
-      "        radius: 0.35\n"
-      "        width: 0.25\n"
-      "        rotational_axis: {0, 1, 0}\n"
-      "        inertia.mass: 20\n"
-      "Scene is Physics3D.System:\n"
-      "    chassis is Chassis\n"
-      "    front_left is Wheel\n"
-      "    front_right is Wheel\n";
-  for (const char* side : {"left", "right"}) {
-    text += std::string("    ") + side +
-            "_suspension is Vehicles.Suspensions.SingleMate.LinearSpringDamper:\n"
-            "        with Vehicles.Suspensions.Properties.Steering\n"
-            "        chassis_connector: chassis." +
-            (side[0] == 'l' ? "fl" : "fr") + "\n        attachment_connector: front_" + side +
-            ".connector\n"
-            "        mate.spring_constant.stiffness: 20000\n"
-            "        mate.spring_damping.damping_constant: 1265\n";
-  }
+  std::string text = openplx::testing::front_axle(
+      "        mate.spring_constant.stiffness: 20000\n"
+      "        mate.spring_damping.damping_constant: 1265\n",
+      true);
   text += "    steering is Vehicles.Steering.Kinematic." + mechanism +
           ":\n"
           "        left_suspension: left_suspension\n"
