@@ -66,8 +66,8 @@ class SystemBuilder {
     joint_properties_ = program.loaded_model("Urdf.JointProperties");
     package_path_ = program.loaded_model("Urdf.PackagePath");
     collision_filter_ = program.loaded_model("Simulation.DisableCollisionPair");
-    // Models with no MuJoCo counterpart get a warning instead of vanishing: terrain, tracks, lidars, linear
-    // 1-D bodies and motors, and power sources without a torque law (InfinitePowerSource).
+    // Models with no MuJoCo counterpart get a warning instead of vanishing: shovels, linear 1-D bodies and
+    // motors, and power sources without a torque law (InfinitePowerSource).
     for (const char* name :
          {"Terrain.Shovel", "Physics1D.Bodies.LinearBody", "Physics1D.Interactions.LinearVelocityMotor",
           "DriveTrain.InfinitePowerSource"}) {
