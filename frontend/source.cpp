@@ -1,37 +1,44 @@
 #include "frontend/source.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 namespace openplx::frontend {
 
 SourceFile::SourceFile(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {
   if (text_.size() >= 3 && text_.compare(0, 3, "\xEF\xBB\xBF") == 0) content_begin_ = 3;
-  line_starts_.push_back(content_begin_);
-  for (uint32_t i = content_begin_; i < text_.size(); ++i) {
-    if (text_[i] == '\n') {
-      line_starts_.push_back(i + 1);
-    } else if (text_[i] == '\r') {
-      if (i + 1 < text_.size() && text_[i + 1] == '\n') ++i;
-      line_starts_.push_back(i + 1);
+}
+
+const std::vector<uint32_t>& SourceFile::line_starts() const {
+  std::call_once(lines_found_, [this] {
+    line_starts_.push_back(content_begin_);
+    for (uint32_t i = content_begin_; i < text_.size(); ++i) {
+      if (text_[i] == '\n') {
+        line_starts_.push_back(i + 1);
+      } else if (text_[i] == '\r') {
+        if (i + 1 < text_.size() && text_[i + 1] == '\n') ++i;
+        line_starts_.push_back(i + 1);
+      }
     }
-  }
+  });
+  return line_starts_;
 }
 
 LineCol SourceFile::line_col(uint32_t offset) const {
-  auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
-  size_t index = it == line_starts_.begin() ? 0 : static_cast<size_t>(it - line_starts_.begin()) - 1;
-  uint32_t start = line_starts_[index];
+  const std::vector<uint32_t>& starts = line_starts();
+  auto it = std::upper_bound(starts.begin(), starts.end(), offset);
+  size_t index = it == starts.begin() ? 0 : static_cast<size_t>(it - starts.begin()) - 1;
+  uint32_t start = starts[index];
   return {static_cast<uint32_t>(index + 1), offset >= start ? offset - start + 1 : 1};
 }
 
 std::string_view SourceFile::line_text(uint32_t line) const {
-  if (line == 0 || line > line_starts_.size()) return {};
-  uint32_t begin = line_starts_[line - 1];
-  uint32_t end = line < line_starts_.size() ? line_starts_[line] : static_cast<uint32_t>(text_.size());
+  const std::vector<uint32_t>& starts = line_starts();
+  if (line == 0 || line > starts.size()) return {};
+  uint32_t begin = starts[line - 1];
+  uint32_t end = line < starts.size() ? starts[line] : static_cast<uint32_t>(text_.size());
   std::string_view view(text_.data() + begin, end - begin);
   while (!view.empty() && (view.back() == '\n' || view.back() == '\r')) view.remove_suffix(1);
   return view;
@@ -43,18 +50,22 @@ std::optional<FileId> SourceManager::load(const std::string& path, std::string& 
     error = "is a directory, not a file";
     return std::nullopt;
   }
-  std::ifstream in(path, std::ios::binary);
+  // One read of the whole file (stdio: a stream per file costs more than the bundle files it reads).
+  std::FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) {
     error = "cannot open file";
     return std::nullopt;
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) {
+  std::string text;
+  char chunk[1 << 16];
+  size_t got = 0;
+  while ((got = std::fread(chunk, 1, sizeof chunk, in)) > 0) text.append(chunk, got);
+  const bool failed = std::ferror(in) != 0;
+  std::fclose(in);
+  if (failed) {
     error = "cannot read file";
     return std::nullopt;
   }
-  std::string text = std::move(buffer).str();
   // Offsets are 32-bit; a 4 GiB model is not a model.
   if (text.size() >= std::numeric_limits<uint32_t>::max()) {
     error = "file is larger than 4 GiB";

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -38,13 +39,17 @@ class SourceFile {
   LineCol line_col(uint32_t offset) const;
   // The line holding `offset`, without its line terminator.
   std::string_view line_text(uint32_t line) const;
-  uint32_t line_count() const { return static_cast<uint32_t>(line_starts_.size()); }
+  uint32_t line_count() const { return static_cast<uint32_t>(line_starts().size()); }
 
  private:
+  // Found on first use: only files with a diagnostic (or a dump) need them.
+  const std::vector<uint32_t>& line_starts() const;
+
   std::string path_;
   std::string text_;
   uint32_t content_begin_ = 0;
-  std::vector<uint32_t> line_starts_;  // line terminators: LF, CRLF or a lone CR
+  mutable std::once_flag lines_found_;
+  mutable std::vector<uint32_t> line_starts_;  // line terminators: LF, CRLF or a lone CR
 };
 
 class SourceManager {

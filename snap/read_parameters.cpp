@@ -84,6 +84,8 @@ void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interacti
     case K::TorqueMotor:
       i.default_effort = in.real(id, i.kind == K::ForceMotor ? "default_force" : "default_torque");
       break;
+    case K::Steering:  // its geometry is read with the suspensions it steers (read_steering)
+      break;
     case K::Other:
       return;
   }

@@ -69,8 +69,8 @@ TEST_F(UrdfParity, BodiesMassesAndPosesMatchMuJoCosUrdfCompiler) {
   // in from ../shared/urdf-next before a checkout's shared corpus has them.
   size_t compared = 0, rejected = 0;
   std::vector<fs::path> files;
-  for (const fs::path root : {fs::path(OPENPLX_VENDORED_CORPUS_DIR) / "urdf",
-                              fs::path(OPENPLX_TEST_DATA_DIR) / "urdf" / "robots"}) {
+  for (const fs::path& root : {fs::path(OPENPLX_VENDORED_CORPUS_DIR) / "urdf",
+                               fs::path(OPENPLX_TEST_DATA_DIR) / "urdf" / "robots"}) {
     for (const auto& entry : fs::recursive_directory_iterator(root)) files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
@@ -129,8 +129,9 @@ TEST_F(UrdfParity, BodiesMassesAndPosesMatchMuJoCosUrdfCompiler) {
         // Compared: links with mass, and massless links welded to a moving parent (tool frames), which stay
         // massless in both. (A mass welded to the world never moves: the root's is not compared.)
         if (config == 0 && theirs->body_mass[b] == 0 && ours->body_jntnum[o] == 0 &&
-            ours->body_weldid[o] != 0)
+            ours->body_weldid[o] != 0) {
           EXPECT_EQ(ours->body_mass[o], 0.0);
+        }
         if (config == 0 && theirs->body_mass[b] > 0) {
           EXPECT_NEAR(ours->body_mass[o], theirs->body_mass[b], 1e-9 * std::max(1.0, theirs->body_mass[b]));
           std::array<double, 3> a{}, c{};
