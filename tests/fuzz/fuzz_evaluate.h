@@ -1,5 +1,5 @@
-// The body of the evaluator fuzz target: parse, pick the root model, instantiate and evaluate everything,
-// print the values, then assemble and emit MJCF. Shared by the libFuzzer entry point and the regression test.
+// The body of the evaluator fuzz target: parse, pick the root model, instantiate and check it, assemble it,
+// print every value, then emit MJCF. Shared by the libFuzzer entry point and the regression test.
 #pragma once
 
 #include <cstddef>
@@ -26,11 +26,12 @@ inline void evaluate_one(const uint8_t* data, size_t size) {
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   if (evaluation.root == fe::kNoObject) return;
   std::ostringstream out;
-  fe::dump_values(out, *evaluation.evaluator, evaluation.root);
-  // The passes after evaluation: the physics view, SNAP and the MJCF emitter.
+  // The passes after evaluation: the physics view (which evaluates what the evaluator left for when it is
+  // read), SNAP and the MJCF emitter; then every value, read or not.
   openplx::snap::ResolvedSystem view =
       openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
   openplx::snap::run_snap(view, sink);
+  fe::dump_values(out, *evaluation.evaluator, evaluation.root);
   openplx::mjcf::EmitOptions options;
   options.model_name = evaluation.evaluator->root_name();
   out << openplx::mjcf::emit_mjcf(view, options, sink).document.to_string();
