@@ -26,6 +26,7 @@
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
 #include "tools/cli/atomic_file.h"
+#include "tools/cli/huge_page_heap.h"
 
 #ifndef OPENPLX_VERSION
 #define OPENPLX_VERSION "0.0.0"
@@ -99,6 +100,7 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   }
 }
 
+constexpr uintmax_t kHugePageInputBytes = 32 << 10;
 bool ending_after_run = false;  // end_process_after_run(): the process exits as soon as run() returns
 
 // Hands `object` to the process's exit instead of freeing it piece by piece (tens of thousands of objects
@@ -136,6 +138,12 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
                                                              : "cannot open file")
         << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
     return false;
+  }
+  if (ending_after_run) {
+    // A model written out by hand or by a script (boxes, trees) needs a few hundred bytes of heap per byte of
+    // text; a small one does not pay for the reservation.
+    const uintmax_t size = std::filesystem::file_size(options.input, ec);
+    if (!ec && size >= kHugePageInputBytes) reserve_huge_page_heap(size * 512);
   }
   fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
   request.default_bundles = options.default_bundles;

@@ -1,0 +1,31 @@
+#include "tools/cli/huge_page_heap.h"
+
+#include <malloc.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <vector>
+
+namespace openplx::cli {
+
+void reserve_huge_page_heap(size_t bytes) {
+  constexpr uintptr_t kHugePage = 2u << 20;
+  constexpr size_t kBlock = 16 << 20;  // below glibc's largest mmap threshold (32 MiB)
+  // Blocks up to that size come from the heap (an mmap'd block would get small pages); never trimmed.
+  mallopt(M_MMAP_THRESHOLD, 2 * kBlock);
+  mallopt(M_TRIM_THRESHOLD, INT32_MAX);
+  const auto begin = reinterpret_cast<uintptr_t>(sbrk(0));
+  // Blocks taken in a row and given back coalesce into the heap's top chunk; none of it is touched yet.
+  std::vector<void*> blocks;
+  for (size_t taken = 0; taken < bytes; taken += kBlock) blocks.push_back(malloc(kBlock));
+  for (void* block : blocks) free(block);
+  const auto end = reinterpret_cast<uintptr_t>(sbrk(0));
+  const uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
+  const uintptr_t last = end & ~(kHugePage - 1);
+  // Without THP (kernel setting "never") this fails harmlessly and the heap keeps small pages.
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
+}  // namespace openplx::cli
