@@ -919,7 +919,7 @@ bool Evaluator::assignable(const Value& v, const Type& target) const {
   if (target.is_array) {
     if (v.kind != Value::Kind::Array) return false;
     const Type element = target.element();
-    for (const Value& item : v.array) {
+    for (const Value& item : v.array()) {
       if (!assignable(item, element)) return false;
     }
     return true;
@@ -954,7 +954,7 @@ Value Evaluator::convert(Value v, const Type& target, SourceRange where, const D
   if (v.kind == Value::Kind::Unset) return v;
   if (target.is_array && v.kind == Value::Kind::Array) {
     const Type element = target.element();
-    for (Value& item : v.array) {
+    for (Value& item : v.array()) {
       item = convert(std::move(item), element, where, what);
       if (item.is_error()) return Value::error();
     }
@@ -1174,13 +1174,13 @@ Value Evaluator::eval(ExprId id, const Scope& scope, const Type* expected) {
                      "an index must be an Int, not a " + describe_value_type(index, graph_));
         return Value::error();
       }
-      if (index.int_value < 0 || static_cast<size_t>(index.int_value) >= array.array.size()) {
+      if (index.int_value < 0 || static_cast<size_t>(index.int_value) >= array.array().size()) {
         sink_.report(DiagCode::IndexOutOfRange, doc.expr(e.operands[1]).range,
                      "index " + std::to_string(index.int_value) + " is outside the array's " +
-                         std::to_string(array.array.size()) + " elements");
+                         std::to_string(array.array().size()) + " elements");
         return Value::error();
       }
-      return array.array[static_cast<size_t>(index.int_value)];
+      return array.array()[static_cast<size_t>(index.int_value)];
     }
     case ExprKind::Call:
       return eval_call(e, scope);
@@ -1538,7 +1538,7 @@ double NativeCall::real(const Value& v) {
 std::vector<double> NativeCall::reals(const Value& array) {
   std::vector<double> out;
   if (array.kind != Value::Kind::Array) poisoned_ = true;
-  for (const Value& v : array.array) out.push_back(v.as_real());
+  for (const Value& v : array.array()) out.push_back(v.as_real());
   return out;
 }
 

@@ -68,11 +68,11 @@ std::string format_value(Evaluator& evaluator, const Value& value, bool owned) {
     case Value::Kind::Bool:
       return value.bool_value ? "true" : "false";
     case Value::Kind::String:
-      return quoted(value.string_value);
+      return quoted(value.string_value());
     case Value::Kind::Array: {
       std::string out = "[";
-      for (size_t i = 0; i < value.array.size(); ++i) {
-        const Value& item = value.array[i];
+      for (size_t i = 0; i < value.array().size(); ++i) {
+        const Value& item = value.array()[i];
         const bool item_owned = item.kind == Value::Kind::Object &&
                                 graph.at(item.object).owner == kNoObject &&
                                 !graph.at(item.object).is_const_singleton;

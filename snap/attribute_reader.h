@@ -32,7 +32,7 @@ class AttributeReader {
   }
   std::optional<std::string> string(frontend::ObjectId id, std::string_view name) {
     const frontend::Value* v = ev_.value(id, name);
-    return v && v->kind == frontend::Value::Kind::String ? std::optional<std::string>(v->string_value)
+    return v && v->kind == frontend::Value::Kind::String ? std::optional<std::string>(v->string_value())
                                                          : std::nullopt;
   }
   frontend::ObjectId object(frontend::ObjectId id, std::string_view name) {
@@ -44,7 +44,7 @@ class AttributeReader {
     std::vector<frontend::ObjectId> out;
     const frontend::Value* v = ev_.value(id, name);
     if (v && v->kind == frontend::Value::Kind::Array) {
-      for (const frontend::Value& item : v->array)
+      for (const frontend::Value& item : v->array())
         if (item.kind == frontend::Value::Kind::Object) out.push_back(item.object);
     }
     return out;

@@ -13,7 +13,7 @@ std::vector<double> reals(AttributeReader& in, fe::ObjectId id, std::string_view
   std::vector<double> out;
   const fe::Value* v = in.evaluator().value(id, name);
   if (v && v->kind == fe::Value::Kind::Array) {
-    for (const fe::Value& item : v->array)
+    for (const fe::Value& item : v->array())
       if (item.is_number()) out.push_back(item.as_real());
   }
   return out;

@@ -240,8 +240,8 @@ class SystemBuilder {
       case Role::Kind::PackagePath:
         if (const fe::Value* name = ev_.value(id, "name"); name && name->kind == fe::Value::Kind::String) {
           const fe::Value* dir = ev_.value(id, "path");
-          packages_[name->string_value] =
-              dir && dir->kind == fe::Value::Kind::String ? dir->string_value : "";
+          packages_[name->string_value()] =
+              dir && dir->kind == fe::Value::Kind::String ? dir->string_value() : "";
         }
         break;
       case Role::Kind::CollisionFilter:
@@ -441,10 +441,10 @@ class SystemBuilder {
         break;
     }
     if (const fe::Value* path = ev_.value(id, "path"); path && path->kind == fe::Value::Kind::String) {
-      g.file = path->string_value;
+      g.file = path->string_value();
     }
     if (const fe::Value* uri = ev_.value(id, "package_uri"); uri && uri->kind == fe::Value::Kind::String) {
-      g.package_uri = uri->string_value;
+      g.package_uri = uri->string_value();
     }
     if (const fe::Value* scale = ev_.value(id, "scale"); scale && scale->kind == fe::Value::Kind::Object) {
       g.scale = vec3(id, "scale");
@@ -509,7 +509,7 @@ class SystemBuilder {
     auto connectors = [&](fe::ObjectId id) {
       std::vector<int> out;
       if (const fe::Value* list = ev_.value(id, "connectors"); list && list->kind == fe::Value::Kind::Array) {
-        for (const fe::Value& c : list->array)
+        for (const fe::Value& c : list->array())
           out.push_back(c.kind == fe::Value::Kind::Object ? shaft(c.object) : -1);
       }
       return out;
@@ -570,7 +570,7 @@ class SystemBuilder {
       if (view_.nodes[k].kind != FrameNode::Kind::System) continue;
       const fe::Value* list = ev_.value(view_.nodes[k].object, "kinematically_controlled");
       if (!list || list->kind != fe::Value::Kind::Array) continue;
-      for (const fe::Value& v : list->array) {
+      for (const fe::Value& v : list->array()) {
         auto it = v.kind == fe::Value::Kind::Object ? node_of.find(v.object) : node_of.end();
         if (it != node_of.end() && view_.nodes[it->second].kind == FrameNode::Kind::Body)
           view_.nodes[it->second].body.dynamic = false;
@@ -581,9 +581,9 @@ class SystemBuilder {
   // A 1-dof interaction acts on the mate whose connectors it shares (in either order).
   void attach(Interaction1D& interaction) {
     const fe::Value* list = ev_.value(interaction.object, "connectors");
-    if (!list || list->kind != fe::Value::Kind::Array || list->array.size() != 2) return;
-    const fe::Value& a = list->array[0];
-    const fe::Value& b = list->array[1];
+    if (!list || list->kind != fe::Value::Kind::Array || list->array().size() != 2) return;
+    const fe::Value& a = list->array()[0];
+    const fe::Value& b = list->array()[1];
     if (interaction.kind == Interaction1D::Kind::DistanceRange ||
         interaction.kind == Interaction1D::Kind::DistanceMotor) {  // between any two connectors
       for (size_t k = 0; k < view_.connectors.size(); ++k) {
@@ -596,9 +596,9 @@ class SystemBuilder {
     }
     for (size_t m = 0; m < view_.mates.size(); ++m) {
       const fe::Value* mate_list = ev_.value(view_.mates[m].object, "connectors");
-      if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array.size() != 2) continue;
-      const fe::Value& x = mate_list->array[0];
-      const fe::Value& y = mate_list->array[1];
+      if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array().size() != 2) continue;
+      const fe::Value& x = mate_list->array()[0];
+      const fe::Value& y = mate_list->array()[1];
       const bool same =
           (x.object == a.object && y.object == b.object) || (x.object == b.object && y.object == a.object);
       if (same && a.kind == fe::Value::Kind::Object && b.kind == fe::Value::Kind::Object) {
@@ -763,7 +763,7 @@ class SystemBuilder {
   // ConvexMesh/TriMesh vertices (Math.Vec3 instances) and TriMesh triangle indices.
   void read_mesh_data(fe::ObjectId id, Geometry& g) {
     if (const fe::Value* v = ev_.value(id, "vertices"); v && v->kind == fe::Value::Kind::Array) {
-      for (const fe::Value& item : v->array) {
+      for (const fe::Value& item : v->array()) {
         if (item.kind != fe::Value::Kind::Object) continue;
         Eigen::Vector3d p;
         const char* axes[] = {"x", "y", "z"};
@@ -775,7 +775,7 @@ class SystemBuilder {
       }
     }
     if (const fe::Value* v = ev_.value(id, "indices"); v && v->kind == fe::Value::Kind::Array) {
-      for (const fe::Value& item : v->array) {
+      for (const fe::Value& item : v->array()) {
         if (item.kind == fe::Value::Kind::Int) g.indices.push_back(static_cast<int>(item.int_value));
       }
     }
@@ -879,7 +879,7 @@ class SystemBuilder {
     // A URDF joint renamed in OpenPLX (it shares its name with a link) keeps its URDF name in MuJoCo.
     if (const fe::Value* urdf = ev_.value(id, "urdf_name"); urdf && urdf->kind == fe::Value::Kind::String) {
       const size_t dot = mate.path.rfind('.');
-      mate.path = (dot == std::string::npos ? "" : mate.path.substr(0, dot + 1)) + urdf->string_value;
+      mate.path = (dot == std::string::npos ? "" : mate.path.substr(0, dot + 1)) + urdf->string_value();
     }
     mate.where = where_of(id);
     const fe::ModelInfo* type = ev_.graph().at(id).type;
@@ -990,14 +990,14 @@ class SystemBuilder {
   // Connectors are references to objects anywhere in the tree (or to the World singleton).
   void resolve_connectors(Mate& mate) {
     const fe::Value* list = ev_.value(mate.object, "connectors");
-    const size_t count = list && list->kind == fe::Value::Kind::Array ? list->array.size() : 0;
+    const size_t count = list && list->kind == fe::Value::Kind::Array ? list->array().size() : 0;
     if (count != 2) {
       sink_.report(fe::DiagCode::InvalidMate, mate.where,
                    "mate " + mate.path + " needs exactly two connectors, has " + std::to_string(count));
       return;
     }
     for (int side = 0; side < 2; ++side) {
-      const fe::Value& item = list->array[side];
+      const fe::Value& item = list->array()[side];
       if (item.kind != fe::Value::Kind::Object) continue;
       auto it = connector_of_.find(item.object);
       if (it != connector_of_.end()) {

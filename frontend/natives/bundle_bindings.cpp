@@ -69,7 +69,7 @@ void register_bundle_natives(NativeRegistry& r) {
   r.add("Terrain.TerrainMaterial.is_default_terrain_material", &is_default_material);
   r.add("Sensors.Signals.LidarOutput.marshalling_from_fields", [](NativeCall& c, Args a) {
     int bytes = 0;
-    for (const Value& field : a[0].array) {
+    for (const Value& field : a[0].array()) {
       const int size = lidar_field_bytes(field.int_value);
       if (size < 0) return c.fail("unknown lidar output field " + std::to_string(field.int_value));
       bytes += size;

@@ -375,9 +375,9 @@ TEST_F(AppendixBEval, Case36_ArrayOfReferences) {
   const fe::Slot* all = slot("all");
   ASSERT_NE(all, nullptr);
   ASSERT_EQ(all->value.kind, fe::Value::Kind::Array);
-  ASSERT_EQ(all->value.array.size(), 2u);
-  EXPECT_EQ(all->value.array[0].object, object("a"));
-  EXPECT_EQ(all->value.array[1].object, object("c"));
+  ASSERT_EQ(all->value.array().size(), 2u);
+  EXPECT_EQ(all->value.array()[0].object, object("a"));
+  EXPECT_EQ(all->value.array()[1].object, object("c"));
   EXPECT_EQ(value("all"), "[-> a, -> c]");
   EXPECT_EQ(instances_of("Part"), 2u);
 }
