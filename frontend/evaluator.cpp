@@ -272,20 +272,20 @@ ObjectId Evaluator::new_object(ModelInfo* type, ObjectId owner, std::string name
   return id;
 }
 
-uint32_t Evaluator::reach(const ModelInfo* type) {
-  auto [it, fresh] = reach_.try_emplace(type, 0);
-  if (!fresh) return it->second;
-  // A key "a.b" of these maps targets the instance two levels below the model's own.
-  auto depth = [](const std::string& rel) {
-    return rel.empty() ? 0u : 1u + static_cast<uint32_t>(std::count(rel.begin(), rel.end(), '.'));
-  };
-  uint32_t deepest = 0;
-  for (const ModelInfo* model : type->linearization) {
-    for (const auto& [rel, unused] : model->by_parent) deepest = std::max(deepest, depth(rel));
-    for (const auto& [rel, unused] : model->children_below) deepest = std::max(deepest, depth(rel));
-    for (const auto& [rel, unused] : model->annotations_below) deepest = std::max(deepest, depth(rel));
+template <typename Visit>
+void Evaluator::for_each_reaching(const std::vector<ObjectId>& chain, Visit&& visit) const {
+  const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
+  for (uint32_t i = 0; i < own_level; ++i) {
+    const EntryReach::Node* node = entry_reach_.root(graph_.at(chain[i]).type);
+    for (uint32_t k = i + 1; node && k <= own_level; ++k)
+      node = EntryReach::step(node, graph_.at(chain[k]).name);
+    if (node && node->targeted && visit(i, *node)) return;
   }
-  return it->second = deepest;
+}
+
+bool Evaluator::assigns_only(const ModelInfo* type, const EntryReach::Node& node) const {
+  if (node.assigns_only < 0) node.assigns_only = assigns_only(type, node.rel);
+  return node.assigns_only;
 }
 
 bool Evaluator::assigns_only(const ModelInfo* type, const std::string& rel) const {
@@ -315,29 +315,21 @@ void Evaluator::build_slots(ObjectId id) {
   std::string key(reinterpret_cast<const char*>(&graph_.at(id).type), sizeof(ModelInfo*));
   std::string full_key = key;
   std::vector<std::pair<uint32_t, std::string>> overlays;  // level, path from it to the instance
-  for (uint32_t i = 0; i < own_level; ++i) {
+  for_each_reaching(chain, [&](uint32_t i, const EntryReach::Node& node) {
     const ModelInfo* type = graph_.at(chain[i]).type;
     const uint32_t distance = own_level - i;
-    if (distance > reach(type)) continue;  // its entries stop short of this instance
-    std::string rel;
-    for (uint32_t k = i + 1; k <= own_level; ++k) (rel += rel.empty() ? "" : ".") += graph_.at(chain[k]).name;
-    for (ModelInfo* model : type->linearization) {
-      if (model->by_parent.count(rel) || model->children_below.count(rel) ||
-          model->annotations_below.count(rel)) {
-        std::string part(reinterpret_cast<const char*>(&type), sizeof(type));
-        part.append(reinterpret_cast<const char*>(&distance), sizeof(distance));
-        part += rel;
-        part += '\0';
-        full_key += part;
-        if (assigns_only(type, rel)) {
-          overlays.emplace_back(i, std::move(rel));
-        } else {
-          key += part;
-        }
-        break;
-      }
+    std::string part(reinterpret_cast<const char*>(&type), sizeof(type));
+    part.append(reinterpret_cast<const char*>(&distance), sizeof(distance));
+    part += node.rel;
+    part += '\0';
+    full_key += part;
+    if (assigns_only(type, node)) {
+      overlays.emplace_back(i, node.rel);
+    } else {
+      key += part;
     }
-  }
+    return false;
+  });
   if (auto found = layouts_.find(full_key); found != layouts_.end()) {
     copy_layout(id, found->second, chain, own_level);
     return;
@@ -605,20 +597,9 @@ bool Evaluator::reached_by_entries(ObjectId id) const {
   std::vector<ObjectId> chain;
   for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
   std::reverse(chain.begin(), chain.end());
-  const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
-  for (uint32_t i = 0; i < own_level; ++i) {
-    const ModelInfo* type = graph_.at(chain[i]).type;
-    auto known = reach_.find(type);
-    if (known != reach_.end() && own_level - i > known->second) continue;
-    std::string rel;
-    for (uint32_t k = i + 1; k <= own_level; ++k) (rel += rel.empty() ? "" : ".") += graph_.at(chain[k]).name;
-    for (const ModelInfo* model : type->linearization) {
-      if (model->by_parent.count(rel) || model->children_below.count(rel) ||
-          model->annotations_below.count(rel))
-        return true;
-    }
-  }
-  return false;
+  bool reached = false;
+  for_each_reaching(chain, [&](uint32_t, const EntryReach::Node&) { return reached = true; });
+  return reached;
 }
 
 void Evaluator::move_free_subtree(ObjectId id, uint32_t levels) {

@@ -16,6 +16,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "frontend/entry_reach.h"
 #include "frontend/object_graph.h"
 #include "frontend/program.h"
 
@@ -136,8 +137,11 @@ class Evaluator {
   bool overlay_assignments(ObjectId id, const std::vector<ObjectId>& chain,
                            const std::vector<std::pair<uint32_t, std::string>>& overlays);
   void build_slots_from(ObjectId id, const std::vector<Level>& levels);
-  // How many levels below its own instance a model's entries reach (0: only its own attributes).
-  uint32_t reach(const ModelInfo* type);
+  // Calls visit(level, node) for each ancestor in `chain` (root first, the instance last) whose type's
+  // entries aim at the instance or its parts, nearest the root first, until visit returns true.
+  template <typename Visit>
+  void for_each_reaching(const std::vector<ObjectId>& chain, Visit&& visit) const;
+  bool assigns_only(const ModelInfo* type, const EntryReach::Node& node) const;
   std::vector<Level> levels_of(ObjectId id) const;
   // The entries aimed at one instance's attributes (see collect_targeting).
   struct Targeting {
@@ -220,7 +224,7 @@ class Evaluator {
   void copy_layout(ObjectId id, const Layout& layout, const std::vector<ObjectId>& chain, uint32_t own_level);
   std::unordered_map<std::string, Layout> layouts_;
   uint32_t next_layout_ = 1;
-  std::unordered_map<const ModelInfo*, uint32_t> reach_;
+  mutable EntryReach entry_reach_;   // built per type on first use
   std::vector<ObjectId> chain_;      // build_slots' ancestor chain
   std::deque<Type> narrowed_types_;  // types `becomes` gave slots (slots point at them)
 };
