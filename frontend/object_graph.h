@@ -67,14 +67,14 @@ struct Slot {
 // Attribute name -> slot index. Instances whose layout comes from their type alone share one.
 using SlotIndex = std::unordered_map<std::string_view, uint32_t>;
 
-struct Object {
+struct Object {  // fields ordered so that none pads: there is one per instance
   ModelInfo* type = nullptr;
   ObjectId owner = kNoObject;
-  std::string name;  // attribute name in the owner; the model name for roots and const singletons
   uint32_t depth = 0;
+  std::string name;  // attribute name in the owner; the model name for roots and const singletons
   const Entry* created_by = nullptr;  // the declaration of the owning attribute, for owned defaults
-  bool is_const_singleton = false;
   uint32_t layout = 0;  // instances with one layout have the same slots bound by the same entries
+  bool is_const_singleton = false;
   std::vector<Slot> slots;
   std::shared_ptr<const SlotIndex> index;
   std::shared_ptr<const std::vector<SlotInfo>> infos;  // what the slots' info point at
