@@ -71,15 +71,25 @@ std::string Type::describe() const {
 }
 
 std::string ObjectGraph::path(ObjectId id) const {
-  std::vector<const Object*> chain;
-  for (ObjectId cur = id; cur != kNoObject; cur = objects[cur].owner) chain.push_back(&objects[cur]);
-  std::string out;
-  const Object* top = chain.back();
-  const bool named_top = top->is_const_singleton || (root != kNoObject && top != &objects[root]);
-  if (named_top) out = top->name;
-  for (auto it = chain.rbegin() + 1; it != chain.rend(); ++it) {
-    if (!out.empty()) out += '.';
-    out += (*it)->name;
+  // Called for every signal and diagnostic: measured first, then written back to front in one allocation.
+  ObjectId top = id;
+  size_t length = 0;
+  for (ObjectId cur = id; cur != kNoObject; cur = objects[cur].owner) {
+    top = cur;
+    length += objects[cur].name.size() + 1;
+  }
+  const bool named_top = objects[top].is_const_singleton || (root != kNoObject && top != root);
+  if (!named_top) length -= objects[top].name.size() + 1;
+  if (length == 0) return {};
+  std::string out(length - 1, '.');
+  size_t end = out.size();
+  for (ObjectId cur = id;; cur = objects[cur].owner) {
+    if (cur == top && !named_top) break;
+    const std::string& name = objects[cur].name;
+    end -= name.size();
+    out.replace(end, name.size(), name);
+    if (cur == top) break;
+    --end;  // the '.' before it
   }
   return out;
 }
