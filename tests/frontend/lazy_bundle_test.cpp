@@ -1,0 +1,124 @@
+// Bundle files are parsed only when a name they declare is looked up (program.h, bundle_index.h), while
+// whatever sees a whole namespace (duplicates, "did you mean", operators) behaves as if all were parsed.
+#include <algorithm>
+#include <filesystem>
+
+#include "frontend/bundle_index.h"
+#include "frontend/parser.h"
+#include "tests/support/eval_fixture.h"
+
+namespace {
+
+namespace fe = openplx::frontend;
+
+using Names = std::vector<std::string>;
+
+fe::FileDeclarations scan(const std::string& text) {
+  return fe::scan_declarations(text);
+}
+
+TEST(BundleIndex, ListsTopLevelNamesOfPlainDeclarations) {
+  const fe::FileDeclarations d = scan(
+      "# A comment at column 1\n"
+      "Base:\n"
+      "    x is Real: 1  # `not: a name`\n"
+      "    list is Real[]: [\n"
+      "        1, 2]\n"
+      "\n"
+      "Derived is Base with Trait:\n"
+      "    s is String: \"a: \\\" b\"\n"
+      "trait Trait:\n"
+      "    y is Int: 2\n"
+      "const `Odd name` is Base:\n"
+      "    x: 3\n"
+      "gravity is Real: 9.81\n"
+      "Empty\n");
+  EXPECT_TRUE(d.complete);
+  EXPECT_TRUE(d.lazy);
+  EXPECT_EQ(d.names, (Names{"Base", "Derived", "Trait", "Odd name", "gravity", "Empty"}));
+}
+
+TEST(BundleIndex, ReadsCrlfAndSkipsAByteOrderMark) {
+  const std::string text =
+      "\xEF\xBB\xBF"
+      "A:\r\n    v is Int: 1\r\nB is A\r\n";
+  const fe::FileDeclarations d = fe::scan_declarations(text, 3);
+  EXPECT_TRUE(d.lazy);
+  EXPECT_EQ(d.names, (Names{"A", "B"}));
+}
+
+TEST(BundleIndex, ImportsAndOperatorsAreParsedWithTheNamespace) {
+  for (const char* text : {"import @\"other.openplx\" as O\nA:\n    v is O.B\n",
+                           "A:\n    v is Int: 1\noperator +(a: A, b: A) -> A\n", "# only a comment\n"}) {
+    const fe::FileDeclarations d = scan(text);
+    EXPECT_TRUE(d.complete) << text;
+    EXPECT_FALSE(d.lazy) << text;
+    EXPECT_EQ(d.names, text[0] == '#' ? Names{} : Names{"A"}) << text;
+  }
+}
+
+TEST(BundleIndex, IsUnsureOfAnythingElse) {
+  const char* unsure[] = {
+      "A:\n    doc is String: \"\"\"\nB:\n\"\"\"\n",      // a multi-line string
+      "A:\n\tv is Int: 1\n",                              // tab indentation
+      "A:\n    v is Real[]: [1,\nB:\n    w is Int: 2\n",  // an unclosed bracket
+      "A:\n    v is Int: 1)\n",                           // an unmatched bracket
+      "A:\n    s is String: \"open\n",                    // an unterminated string
+      "A:\n    v is Int: 1 ; 2\n",                        // an invalid character
+      "A:\nB:\n    v is Int: 1\n",                        // a header without a block
+      "A\n    v is Int: 1\n",                             // a block without a colon
+      "    v is Int: 1\n",                                // indented, outside any block
+      "A.b:\n    v is Int: 1\n",                          // not a declaration
+      "with A:\n    v is Int: 1\n",                       // a keyword
+  };
+  for (const char* text : unsure) {
+    EXPECT_FALSE(scan(text).complete) << text;
+    EXPECT_FALSE(scan(text).lazy) << text;
+  }
+}
+
+// The scan against the parser on every file we have: a file it calls lazy declares exactly the names it
+// lists (a name it missed would stay invisible), and in the project's bundles it parses without findings.
+TEST(BundleIndex, AgreesWithTheParserOnEveryFile) {
+  namespace fs = std::filesystem;
+  size_t lazy_files = 0;
+  for (const std::string& root :
+       {std::string(OPENPLX_SAMPLES_DIR) + "/../bundles", std::string(OPENPLX_TEST_DATA_DIR),
+        std::string(OPENPLX_SAMPLES_DIR), std::string(OPENPLX_SHARED_CORPUS_DIR)}) {
+    if (!fs::is_directory(root)) continue;
+    const bool bundles = root.ends_with("/bundles");
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
+      if (entry.path().extension() != ".openplx") continue;
+      fe::SourceManager sources;
+      fe::DiagnosticSink sink;
+      std::string error;
+      const std::optional<fe::FileId> id = sources.load(entry.path().string(), error);
+      ASSERT_TRUE(id) << error;
+      const fe::SourceFile& file = sources.file(*id);
+      const fe::FileDeclarations scanned = fe::scan_declarations(file.text(), file.content_begin());
+      if (!scanned.lazy) continue;
+      ++lazy_files;
+      const fe::Document doc = fe::parse_file(sources, *id, sink);
+      Names parsed;
+      for (const fe::Decl& decl : doc.decls) {
+        EXPECT_TRUE(decl.kind == fe::DeclKind::Model || decl.kind == fe::DeclKind::Trait ||
+                    decl.kind == fe::DeclKind::GlobalAttribute)
+            << entry.path();
+        parsed.emplace_back(decl.name.text);
+      }
+      if (sink.diagnostics().empty()) {
+        EXPECT_EQ(parsed, scanned.names) << entry.path();
+      } else {
+        // A broken declaration may be dropped by the parser, but none can appear that the scan missed.
+        for (const std::string& name : parsed) {
+          EXPECT_NE(std::find(scanned.names.begin(), scanned.names.end(), name), scanned.names.end())
+              << entry.path() << ": " << name;
+        }
+        EXPECT_FALSE(bundles) << entry.path() << " has findings";
+      }
+    }
+  }
+  EXPECT_GT(lazy_files, 100u);
+}
+
+}  // namespace
