@@ -121,4 +121,75 @@ TEST(BundleIndex, AgreesWithTheParserOnEveryFile) {
   EXPECT_GT(lazy_files, 100u);
 }
 
+class LazyBundle : public openplx::testing::EvalTest {
+ protected:
+  void SetUp() override {
+    write("bundles/Lazy/config.openplx", "config is BundleConfig:\n    name: \"Lazy\"\n");
+    write("bundles/Lazy/Used.openplx", "Used:\n    v is Int: 1\n");
+    write("bundles/Lazy/Unused.openplx", "Unused:\n    w is Int: 2\n");
+  }
+  // The file a diagnostic with `code` is in ("" when there is none).
+  std::string file_of(fe::DiagCode code) const {
+    for (const fe::Diagnostic& d : sink_.diagnostics()) {
+      if (d.code == code && d.range.file != fe::kNoFile) return sources_.file(d.range.file).path();
+    }
+    return {};
+  }
+  bool load_main(const std::string& text) {
+    return load_file(write("main.openplx", text), nullptr, {dir() + "/bundles"});
+  }
+};
+
+TEST_F(LazyBundle, ParsesOnlyTheFilesWhoseNamesAreLookedUp) {
+  ASSERT_TRUE(load_main("M:\n    u is Lazy.Used\n")) << all_diags();
+  EXPECT_EQ(value("u.v"), "1");
+  EXPECT_NE(program_->loaded_model("Lazy.Used"), nullptr);
+  EXPECT_EQ(program_->loaded_model("Lazy.Unused"), nullptr);  // its file was scanned, not parsed
+  const size_t documents = program_->document_count();
+  fe::ModelInfo* unused = program_->builtin_model("Lazy.Unused");
+  ASSERT_NE(unused, nullptr);
+  EXPECT_EQ(unused->qualified, "Lazy.Unused");
+  EXPECT_EQ(program_->document_count(), documents + 1);
+  EXPECT_EQ(program_->loaded_model("Lazy.Unused"), unused);
+}
+
+TEST_F(LazyBundle, FilesWithOperatorsAreParsedWithTheirNamespace) {
+  write("bundles/Lazy/Pair.openplx", "Pair:\n    a is Int: 0\noperator +(lhs: Pair, rhs: Pair) -> Pair\n");
+  ASSERT_TRUE(load_main("M:\n    u is Lazy.Used\n")) << all_diags();
+  EXPECT_NE(program_->loaded_model("Lazy.Pair"), nullptr);
+  EXPECT_EQ(program_->operators().size(), 1u);
+  EXPECT_EQ(program_->loaded_model("Lazy.Unused"), nullptr);
+}
+
+TEST_F(LazyBundle, ADuplicateAcrossFilesIsStillReported) {
+  write("bundles/Lazy/Zzz.openplx", "Used:\n    v is Int: 3\n");
+  load_main("M:\n    u is Lazy.Used\n");
+  EXPECT_EQ(expect_diag(fe::DiagCode::DuplicateDeclaration, 1, 1), "Duplicate declaration Lazy.Used");
+  EXPECT_TRUE(file_of(fe::DiagCode::DuplicateDeclaration).ends_with("/Lazy/Zzz.openplx"));
+  EXPECT_EQ(value("u.v"), "1");  // the first file in path order declares it
+}
+
+TEST_F(LazyBundle, ADuplicateOfANameInAFileWithOperatorsIsStillReported) {
+  // Ops.openplx, first in path order and parsed with the namespace, declares the Used that counts.
+  write("bundles/Lazy/Ops.openplx", "Used:\n    v is Int: 5\noperator +(lhs: Used, rhs: Used) -> Used\n");
+  load_main("M:\n    u is Lazy.Used\n");
+  EXPECT_EQ(expect_diag(fe::DiagCode::DuplicateDeclaration, 1, 1), "Duplicate declaration Lazy.Used");
+  EXPECT_TRUE(file_of(fe::DiagCode::DuplicateDeclaration).ends_with("/Lazy/Used.openplx"));
+  EXPECT_EQ(value("u.v"), "5");
+}
+
+TEST_F(LazyBundle, DidYouMeanSeesNamesOfFilesNotParsed) {
+  EXPECT_FALSE(load_main("M:\n    u is Lazy.Unusd\n"));
+  EXPECT_EQ(expect_diag(fe::DiagCode::UnknownName, 2, 15),
+            "Unknown name Lazy.Unusd: no `Unusd` in Lazy; did you mean `Unused`?");
+}
+
+TEST_F(LazyBundle, AnImportOfAWaitingFileSharesItsDocument) {
+  // Used.openplx is indexed before Zimporter.openplx (path order), whose import then parses it in Lazy.
+  write("bundles/Lazy/Zimporter.openplx", "import @\"Used.openplx\"\nUser:\n    u is Used\n");
+  ASSERT_TRUE(load_main("M:\n    u is Lazy.User\n")) << all_diags();
+  EXPECT_EQ(value("u.u.v"), "1");
+  EXPECT_NE(program_->loaded_model("Lazy.Used"), nullptr);
+}
+
 }  // namespace
