@@ -1,5 +1,8 @@
 #include "frontend/program.h"
 
+#include <dirent.h>
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <set>
@@ -23,6 +26,28 @@ std::string join(const std::vector<std::string_view>& parts, size_t count) {
     out += parts[i];
   }
   return out;
+}
+
+// The names of a folder's sub-folders and of its other entries, each sorted. readdir, not
+// std::filesystem::directory_iterator, which builds and parses a path per entry: for the bundles that cost
+// as much as scanning their files.
+void list_folder(const std::string& dir, std::vector<std::string>& dirs, std::vector<std::string>& others) {
+  DIR* folder = opendir(dir.c_str());
+  if (!folder) return;
+  while (const dirent* entry = readdir(folder)) {
+    const std::string_view name = entry->d_name;
+    if (name == "." || name == "..") continue;
+    bool is_dir = entry->d_type == DT_DIR;
+    if (entry->d_type == DT_UNKNOWN ||
+        entry->d_type == DT_LNK) {  // links are followed, as is_directory() does
+      struct stat st;
+      is_dir = stat((dir + '/').append(name).c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+    }
+    (is_dir ? dirs : others).emplace_back(name);
+  }
+  closedir(folder);
+  std::sort(dirs.begin(), dirs.end());
+  std::sort(others.begin(), others.end());
 }
 
 }  // namespace
@@ -103,20 +128,9 @@ void Program::load_namespace(Namespace* ns, bool eager) {
   std::string folder = fs::path(ns->dir).lexically_normal().generic_string();
   if (folder == ".") folder.clear();
   if (!folder.empty() && folder.back() != '/') folder += '/';
-  std::error_code ec;
-  std::vector<std::string> files;
   std::vector<std::string> dirs;
-  for (const auto& entry : fs::directory_iterator(ns->dir, ec)) {
-    const std::string& path = entry.path().native();
-    std::string name = path.substr(path.rfind('/') + 1);
-    if (entry.is_directory(ec)) {
-      dirs.push_back(std::move(name));
-    } else if (name.size() > 8 && name.ends_with(".openplx")) {  // as path::extension(): not ".openplx"
-      files.push_back(std::move(name));
-    }
-  }
-  std::sort(files.begin(), files.end());
-  std::sort(dirs.begin(), dirs.end());
+  std::vector<std::string> files;
+  list_folder(ns->dir, dirs, files);
   for (const std::string& name : dirs) {
     if (!ns->children.count(name)) ns->children[name] = new_namespace(name, ns, folder + name, ns->bundle);
   }
@@ -133,6 +147,7 @@ void Program::load_namespace(Namespace* ns, bool eager) {
   std::vector<std::string_view> names;
   bool whole = eager;
   for (const std::string& name : files) {
+    if (name.size() <= 8 || !name.ends_with(".openplx")) continue;  // as path::extension(): not ".openplx"
     // config.openplx describes the bundle and adds nothing to its namespace.
     if (!ns->parent && name == "config.openplx") continue;
     std::string path = folder + name;
