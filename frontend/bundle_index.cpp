@@ -37,6 +37,10 @@ constexpr std::array<bool, 256> kSpecial = [] {
   return special;
 }();
 
+bool special(char c) {
+  return kSpecial[static_cast<unsigned char>(c)];
+}
+
 class Scanner {
  public:
   Scanner(std::string_view text, size_t begin) : text_(text), pos_(begin) {}
@@ -61,6 +65,16 @@ class Scanner {
   void skip_line_end() {
     if (peek() == '\r' && peek(1) == '\n') ++pos_;
     ++pos_;
+  }
+  // The first special character from `from` on, or the end (four at a time: most of a file is plain).
+  size_t skip_plain(size_t from) const {
+    const char* p = text_.data() + from;
+    const char* const end = text_.data() + text_.size();
+    for (; end - p >= 4; p += 4) {
+      if (special(p[0]) | special(p[1]) | special(p[2]) | special(p[3])) break;
+    }
+    while (p != end && !special(*p)) ++p;
+    return static_cast<size_t>(p - text_.data());
   }
   // At a backtick: steps over a non-empty backtick name on this line.
   bool skip_backtick_name();
@@ -122,10 +136,7 @@ Scanner::Header Scanner::scan_header(std::string& name) {
 
 bool Scanner::scan_tokens() {
   while (true) {
-    const char* p = text_.data() + pos_;
-    const char* const end = text_.data() + text_.size();
-    while (p != end && !kSpecial[static_cast<unsigned char>(*p)]) ++p;
-    pos_ = content_end_ = static_cast<size_t>(p - text_.data());
+    pos_ = content_end_ = skip_plain(pos_);
     if (at_line_end()) return true;
     switch (text_[pos_]) {
       case '#':
@@ -192,14 +203,12 @@ FileDeclarations Scanner::run() {
   bool expect_block = false;  // ... and no indented line has come yet
   while (pos_ < text_.size()) {
     const size_t line_begin = pos_;
-    bool tabbed = false;
-    for (; pos_ < text_.size(); ++pos_) {
-      if (text_[pos_] == '\t') {
-        tabbed = true;
-      } else if (text_[pos_] != ' ') {
-        break;
-      }
-    }
+    const char* p = text_.data() + pos_;
+    const char* const end = text_.data() + text_.size();
+    while (p != end && *p == ' ') ++p;
+    const bool tabbed = p != end && *p == '\t';
+    while (p != end && (*p == ' ' || *p == '\t')) ++p;
+    pos_ = static_cast<size_t>(p - text_.data());
     if (at_line_end() || peek() == '#') {  // blank and comment lines take no part in layout
       skip_to_line_end();
       if (pos_ < text_.size()) skip_line_end();
