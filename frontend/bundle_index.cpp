@@ -80,7 +80,7 @@ class Scanner {
   bool skip_backtick_name();
   // An identifier that is not a keyword, or a non-empty backtick name (without its backticks).
   bool read_name(std::string& out);
-  // A line at column 1: the declaration's name, or why the file cannot wait.
+  // A line at column 1: the name it declares, an import or operator, or a line the scan does not know.
   Header scan_header(std::string& name);
   // The rest of a line: strings, comments and brackets. False on anything the lexer would report.
   bool scan_tokens();

@@ -192,4 +192,13 @@ TEST_F(LazyBundle, AnImportOfAWaitingFileSharesItsDocument) {
   EXPECT_NE(program_->loaded_model("Lazy.Used"), nullptr);
 }
 
+TEST_F(LazyBundle, AUsersFileInsideABundleHasItsFoldersParsedWhole) {
+  // A bundle being edited: every file of the folders down to the user's is parsed, and its findings reported.
+  write("bundles/Lazy/Broken.openplx", "Broken:\n    v is Int: 1 +\n");
+  const std::string main = write("bundles/Lazy/Main.openplx", "Main:\n    u is Used\n");
+  EXPECT_FALSE(load_file(main, nullptr, {dir() + "/bundles"}));
+  expect_diag(fe::DiagCode::UnexpectedToken, 2, 18);
+  EXPECT_NE(program_->loaded_model("Lazy.Unused"), nullptr);
+}
+
 }  // namespace
