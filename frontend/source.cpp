@@ -84,7 +84,7 @@ std::optional<FileId> SourceManager::load(const std::string& path, std::string& 
   }
   std::string text;
   bool ok = true;
-  if (S_ISREG(st.st_mode)) {
+  if (S_ISREG(st.st_mode) && st.st_size > 0) {
     text.resize(static_cast<size_t>(st.st_size));
     size_t have = 0;
     while (ok && have < text.size()) {
@@ -99,7 +99,7 @@ std::optional<FileId> SourceManager::load(const std::string& path, std::string& 
     }
     text.resize(have);
   } else {
-    ok = read_rest(fd, text);
+    ok = read_rest(fd, text);  // a pipe, or a file that gives no size (/proc)
   }
   ::close(fd);
   if (!ok) {
