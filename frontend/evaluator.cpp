@@ -1046,6 +1046,7 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
       case Entity::Kind::Namespace: {
         Symbol symbol = program_.lookup_in(target.ns, e.text, &e.range);
         if (!symbol) {
+          program_.load_all(target.ns);
           std::vector<std::string> candidates;
           for (const auto& [n, s] : target.ns->symbols) candidates.push_back(n);
           for (const auto& [n, c] : target.ns->children) candidates.push_back(n);

@@ -1,9 +1,13 @@
 #include "frontend/program.h"
 
+#include <dirent.h>
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <set>
 
+#include "frontend/bundle_index.h"
 #include "frontend/deprecations.h"
 #include "frontend/edit_distance.h"
 #include "frontend/import_plugins.h"
@@ -22,6 +26,28 @@ std::string join(const std::vector<std::string_view>& parts, size_t count) {
     out += parts[i];
   }
   return out;
+}
+
+// The names of a folder's sub-folders and of its other entries, each sorted. readdir, not
+// std::filesystem::directory_iterator, which builds and parses a path per entry: for the bundles that cost
+// as much as scanning their files.
+void list_folder(const std::string& dir, std::vector<std::string>& dirs, std::vector<std::string>& others) {
+  DIR* folder = opendir(dir.c_str());
+  if (!folder) return;
+  while (const dirent* entry = readdir(folder)) {
+    const std::string_view name = entry->d_name;
+    if (name == "." || name == "..") continue;
+    bool is_dir = entry->d_type == DT_DIR;
+    if (entry->d_type == DT_UNKNOWN ||
+        entry->d_type == DT_LNK) {  // links are followed, as is_directory() does
+      struct stat st;
+      is_dir = stat((dir + '/').append(name).c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+    }
+    (is_dir ? dirs : others).emplace_back(name);
+  }
+  closedir(folder);
+  std::sort(dirs.begin(), dirs.end());
+  std::sort(others.begin(), others.end());
 }
 
 }  // namespace
@@ -91,40 +117,85 @@ Namespace* Program::bundle_root(std::string_view name) {
   return it == bundle_roots_.end() ? nullptr : it->second;
 }
 
-void Program::load_namespace(Namespace* ns) {
-  if (ns->loaded) return;
+void Program::load_namespace(Namespace* ns, bool eager) {
+  if (ns->loaded) {
+    if (eager) load_all(ns);
+    return;
+  }
   ns->loaded = true;
-  std::error_code ec;
-  std::vector<fs::path> files;
-  std::vector<fs::path> dirs;
-  for (const auto& entry : fs::directory_iterator(ns->dir, ec)) {
-    if (entry.is_directory(ec)) {
-      dirs.push_back(entry.path());
-    } else if (entry.path().extension() == ".openplx") {
-      files.push_back(entry.path());
-    }
+  // Entries by name: they share the folder, so sorting names sorts their paths, and the folder's normal form
+  // followed by a name is the entry's normal form (one lexically_normal per folder, not per file).
+  std::string folder = fs::path(ns->dir).lexically_normal().generic_string();
+  if (folder == ".") folder.clear();
+  if (!folder.empty() && folder.back() != '/') folder += '/';
+  std::vector<std::string> dirs;
+  std::vector<std::string> files;
+  list_folder(ns->dir, dirs, files);
+  for (const std::string& name : dirs) {
+    if (!ns->children.count(name)) ns->children[name] = new_namespace(name, ns, folder + name, ns->bundle);
   }
-  std::sort(files.begin(), files.end());
-  std::sort(dirs.begin(), dirs.end());
-  for (const fs::path& dir : dirs) {
-    std::string name = dir.filename().string();
-    if (!ns->children.count(name)) {
-      ns->children[name] = new_namespace(name, ns, dir.lexically_normal().generic_string(), ns->bundle);
-    }
-  }
-  for (const fs::path& file : files) {
-    // config.openplx describes the bundle and adds nothing to its namespace.
-    if (!ns->parent && file.filename() == "config.openplx") continue;
-    const std::string path = file.lexically_normal().generic_string();
-    if (loaded_files_.count(path)) continue;
+  // Every file is read and scanned before any is parsed. Unless each was scanned completely and no name is
+  // declared twice, the folder is parsed as a whole, so that a DuplicateDeclaration comes as it always did.
+  struct Found {
+    std::string path;
+    std::optional<FileId> id;
     std::string error;
-    std::optional<FileId> id = sources_.load(path, error);
-    if (!id) {
-      sink_.report(DiagCode::IoError, {}, path + ": " + error);
+    FileDeclarations declares;
+  };
+  std::vector<Found> found;
+  found.reserve(files.size());
+  std::vector<std::string_view> names;
+  bool whole = eager;
+  for (const std::string& name : files) {
+    if (name.size() <= 8 || !name.ends_with(".openplx")) continue;  // as path::extension(): not ".openplx"
+    // config.openplx describes the bundle and adds nothing to its namespace.
+    if (!ns->parent && name == "config.openplx") continue;
+    std::string path = folder + name;
+    if (loaded_files_.count(path) || lazy_by_path_.count(path)) continue;
+    Found& f = found.emplace_back();
+    f.id = sources_.load(path, f.error);
+    f.path = std::move(path);
+    if (!f.id || whole) continue;
+    const SourceFile& source = sources_.file(*f.id);
+    f.declares = scan_declarations(source.text(), source.content_begin());
+    whole = !f.declares.complete;
+    names.insert(names.end(), f.declares.names.begin(), f.declares.names.end());
+  }
+  std::sort(names.begin(), names.end());
+  whole = whole || std::adjacent_find(names.begin(), names.end()) != names.end();
+  // In path order, as before: files that must be parsed now (imports, operators) come in the order they
+  // always did, so operators_ and the diagnostics keep theirs.
+  for (Found& f : found) {
+    if (loaded_files_.count(f.path)) continue;  // imported by a file before it
+    if (!f.id) {
+      sink_.report(DiagCode::IoError, {}, f.path + ": " + f.error);
       continue;
     }
-    load_document(*id, ns, ns->bundle);
+    if (whole || !f.declares.lazy) {
+      load_document(*f.id, ns, ns->bundle);
+      continue;
+    }
+    LazyFile* lazy = &lazy_files_.emplace_back(LazyFile{*f.id, ns});
+    ns->lazy_files.push_back(lazy);
+    lazy_by_path_.emplace(std::move(f.path), lazy);
+    for (std::string& name : f.declares.names) ns->lazy_names.emplace(std::move(name), lazy);
   }
+}
+
+void Program::load_all(Namespace* ns) {
+  load_namespace(ns);
+  for (LazyFile* file : ns->lazy_files) parse_lazy(file);
+}
+
+DocumentInfo* Program::parse_lazy(LazyFile* file) {
+  if (!file->doc) file->doc = load_document(file->file, file->ns, file->ns->bundle);
+  return file->doc;
+}
+
+DocumentInfo* Program::find_loaded(const std::string& path) {
+  if (auto it = loaded_files_.find(path); it != loaded_files_.end()) return it->second;
+  if (auto it = lazy_by_path_.find(path); it != lazy_by_path_.end()) return parse_lazy(it->second);
+  return nullptr;
 }
 
 DocumentInfo* Program::load_document(FileId file, Namespace* ns, const BundleConfig* bundle) {
@@ -189,10 +260,8 @@ void Program::process_imports(DocumentInfo* doc) {
     const std::string extension = fs::path(path).extension().string();
     const std::string alias = decl.alias ? to_string(*decl.alias) : fs::path(path).stem().string();
     if (extension == ".openplx") {
-      DocumentInfo* imported = nullptr;
-      if (auto it = loaded_files_.find(path); it != loaded_files_.end()) {
-        imported = it->second;
-      } else {
+      DocumentInfo* imported = find_loaded(path);
+      if (!imported) {
         std::string error;
         std::optional<FileId> id = sources_.load(path, error);
         if (!id) {
@@ -263,7 +332,7 @@ std::optional<Program::UrdfSource> Program::read_urdf(const std::string& path, c
 
 DocumentInfo* Program::load_main(const std::string& path) {
   const std::string normal = fs::absolute(path).lexically_normal().generic_string();
-  if (auto it = loaded_files_.find(normal); it != loaded_files_.end()) return it->second;
+  if (DocumentInfo* loaded = find_loaded(normal)) return loaded;
   // A file inside a bundle folder is read as part of that bundle, so its neighbours are in scope.
   if (std::optional<std::string> bundle_dir = enclosing_bundle_dir(normal)) {
     const BundleConfig* bundle = nullptr;
@@ -275,17 +344,18 @@ DocumentInfo* Program::load_main(const std::string& path) {
       if (config) bundle = add_bundle(std::move(*config));
     }
     if (bundle) {
+      // Eagerly, as the folders of a bundle being edited: every file's findings are reported.
       Namespace* ns = bundle_root(bundle->name);
       fs::path rel = fs::path(normal).parent_path().lexically_relative(bundle->dir);
       for (const fs::path& part : rel) {
         if (part == ".") continue;
-        load_namespace(ns);
+        load_namespace(ns, true);
         auto child = ns->children.find(part.string());
         if (child == ns->children.end()) break;
         ns = child->second;
       }
-      load_namespace(ns);
-      if (auto it = loaded_files_.find(normal); it != loaded_files_.end()) return it->second;
+      load_namespace(ns, true);
+      if (DocumentInfo* loaded = find_loaded(normal)) return loaded;
     }
   }
   std::string error;
@@ -325,7 +395,14 @@ bool Program::bundle_visible(DocumentInfo* from, const BundleConfig* target) con
 Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRange* where) {
   if (!ns->legacy) {
     load_namespace(ns);
-    if (auto it = ns->symbols.find(name); it != ns->symbols.end()) return it->second;
+    auto it = ns->symbols.find(name);
+    if (it == ns->symbols.end()) {
+      if (auto lazy = ns->lazy_names.find(name); lazy != ns->lazy_names.end()) {
+        parse_lazy(lazy->second);
+        it = ns->symbols.find(name);
+      }
+    }
+    if (it != ns->symbols.end()) return it->second;
     if (auto it = ns->children.find(name); it != ns->children.end())
       return Symbol{nullptr, nullptr, it->second};
   }
@@ -408,6 +485,7 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
     Namespace* ns = s.ns;
     s = lookup_in(ns, name.parts[i].text, report ? &name.range : nullptr);
     if (!s && report) {
+      load_all(ns);
       std::vector<std::string> candidates;
       for (const auto& [n, sym] : ns->symbols) candidates.push_back(n);
       for (const auto& [n, child] : ns->children) candidates.push_back(n);
@@ -744,6 +822,7 @@ std::string Program::suggestion(std::string_view name, const std::vector<std::st
 }
 
 std::vector<std::string> Program::names_visible_from(DocumentInfo* doc) {
+  load_all(doc->ns);
   std::vector<std::string> names;
   for (const auto& [name, sym] : doc->ns->symbols) names.push_back(name);
   for (const auto& [name, child] : doc->ns->children) names.push_back(name);

@@ -1,6 +1,8 @@
 // The declarations of a run: every parsed document, the namespace tree (bundles and their folders), and one
-// ModelInfo per model or trait with its base, traits and flattened members. Bundle folders are parsed
-// lazily, the first time a name inside them is looked up, so a model pays only for the bundles it uses.
+// ModelInfo per model or trait with its base, traits and flattened members. Bundles are read lazily, so a
+// model pays only for the files it uses: a folder is listed and its files scanned for the names they declare
+// (bundle_index.h) the first time a name inside it is looked up, and a file is parsed when one of its names
+// is. Whatever lists all names of a namespace (a "did you mean") first parses the rest with load_all().
 //
 // Name lookup follows spec/openplx-language.md §11: members first (done by the evaluator), then the
 // namespace of the file (its folder, or the file itself outside bundles, plus its imports), then the
@@ -26,7 +28,15 @@ namespace openplx::frontend {
 
 struct ModelInfo;
 struct Namespace;
+struct DocumentInfo;
 class Program;
+
+// A bundle file known only by the names it declares (bundle_index.h), parsed on the first lookup of one.
+struct LazyFile {
+  FileId file;
+  Namespace* ns;
+  DocumentInfo* doc = nullptr;  // once parsed
+};
 
 // A loaded document and where its names resolve.
 struct DocumentInfo {
@@ -57,9 +67,11 @@ struct Namespace {
   Namespace* parent = nullptr;
   std::string dir;  // folder on disk whose .openplx files fill it; empty when filled otherwise
   const BundleConfig* bundle = nullptr;
-  bool loaded = false;
+  bool loaded = false;  // its folder was listed: children known, each file parsed or in lazy_files
   std::map<std::string, Namespace*, std::less<>> children;
-  std::map<std::string, Symbol, std::less<>> symbols;
+  std::map<std::string, Symbol, std::less<>> symbols;        // of the files parsed so far
+  std::vector<LazyFile*> lazy_files;                         // in path order; parsed or not
+  std::map<std::string, LazyFile*, std::less<>> lazy_names;  // what each of them declares
   bool legacy = false;  // a 0.17.8 namespace whose models moved (see deprecations.h)
 };
 
@@ -146,10 +158,15 @@ class Program {
 
   const std::vector<OperatorInfo>& operators() const { return operators_; }
   ModelInfo* builtin_model(std::string_view qualified);  // e.g. "Math.Vec3"; loads its namespace
-  // The model if its bundle namespace is already loaded, without loading anything: a model nothing loaded
-  // cannot be the base of anything evaluated (cheap role checks on models a document may not use).
+  // The model if its file is already parsed, without loading anything: a model nothing loaded cannot be the
+  // base of anything evaluated (cheap role checks on models a document may not use).
   ModelInfo* loaded_model(std::string_view qualified) const;
   ModelInfo* make_trait_extension(ModelInfo* base, std::vector<ModelInfo*> traits);
+  // Loads the namespace and parses every file of it still waiting for a lookup, so that `symbols` lists all
+  // of its names (for "did you mean" suggestions).
+  void load_all(Namespace* ns);
+  // Documents parsed so far: the builtins, the user's file, its imports and the bundle files in use.
+  size_t document_count() const { return documents_.size(); }
 
   SourceManager& sources() { return sources_; }
   DiagnosticSink& sink() { return sink_; }
@@ -158,7 +175,11 @@ class Program {
   std::vector<std::string> names_visible_from(DocumentInfo* doc);
 
  private:
-  void load_namespace(Namespace* ns);
+  // Lists the folder and parses its files, or indexes those that can wait; `eager` parses every one.
+  void load_namespace(Namespace* ns, bool eager = false);
+  DocumentInfo* parse_lazy(LazyFile* file);
+  // The document of a file already loaded, or of one waiting in a namespace (parsed now); else nullptr.
+  DocumentInfo* find_loaded(const std::string& path);
   DocumentInfo* load_document(FileId file, Namespace* ns, const BundleConfig* bundle);
   void declare(DocumentInfo* doc, Namespace* ns);
   void process_imports(DocumentInfo* doc);
@@ -186,6 +207,8 @@ class Program {
   std::deque<GlobalInfo> globals_;
   std::vector<OperatorInfo> operators_;
   std::map<std::string, DocumentInfo*> loaded_files_;  // absolute path -> document
+  std::deque<LazyFile> lazy_files_;
+  std::unordered_map<std::string, LazyFile*> lazy_by_path_;  // absolute path -> file waiting for a lookup
 };
 
 }  // namespace openplx::frontend

@@ -1,8 +1,11 @@
 #include "frontend/source.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
+#include <cerrno>
 #include <limits>
 
 namespace openplx::frontend {
@@ -44,25 +47,62 @@ std::string_view SourceFile::line_text(uint32_t line) const {
   return view;
 }
 
-std::optional<FileId> SourceManager::load(const std::string& path, std::string& error) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    error = "is a directory, not a file";
-    return std::nullopt;
+namespace {
+
+bool is_directory(const std::string& path) {
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+// Appends everything left to read of `fd` to `text`; false on a read error.
+bool read_rest(int fd, std::string& text) {
+  char chunk[1 << 16];
+  while (true) {
+    const ssize_t got = ::read(fd, chunk, sizeof chunk);
+    if (got == 0) return true;
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    text.append(chunk, static_cast<size_t>(got));
   }
-  // One read of the whole file (stdio: a stream per file costs more than the bundle files it reads).
-  std::FILE* in = std::fopen(path.c_str(), "rb");
-  if (!in) {
-    error = "cannot open file";
+}
+
+}  // namespace
+
+std::optional<FileId> SourceManager::load(const std::string& path, std::string& error) {
+  // One open, one fstat and one read of the size it gives (plain POSIX: a stdio stream per file costs more
+  // than most bundle files it would read); pipes and the like are read to their end. A folder is told apart
+  // whether or not it can be opened.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st;
+  if (fd < 0 || fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
+    const bool folder = fd >= 0 ? S_ISDIR(st.st_mode) : is_directory(path);
+    if (fd >= 0) ::close(fd);
+    error = folder ? "is a directory, not a file" : "cannot open file";
     return std::nullopt;
   }
   std::string text;
-  char chunk[1 << 16];
-  size_t got = 0;
-  while ((got = std::fread(chunk, 1, sizeof chunk, in)) > 0) text.append(chunk, got);
-  const bool failed = std::ferror(in) != 0;
-  std::fclose(in);
-  if (failed) {
+  bool ok = true;
+  if (S_ISREG(st.st_mode) && st.st_size > 0) {
+    text.resize(static_cast<size_t>(st.st_size));
+    size_t have = 0;
+    while (ok && have < text.size()) {
+      const ssize_t got = ::read(fd, text.data() + have, text.size() - have);
+      if (got > 0) {
+        have += static_cast<size_t>(got);
+      } else if (got == 0) {
+        break;  // it shrank since fstat
+      } else if (errno != EINTR) {
+        ok = false;
+      }
+    }
+    text.resize(have);
+  } else {
+    ok = read_rest(fd, text);  // a pipe, or a file that gives no size (/proc)
+  }
+  ::close(fd);
+  if (!ok) {
     error = "cannot read file";
     return std::nullopt;
   }
