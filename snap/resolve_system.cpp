@@ -703,8 +703,9 @@ class SystemBuilder {
     return out;
   }
 
-  // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
+  // IMU fields' and lidars' connectors by index.
   void resolve_sensor_attachments() {
+    if (sensor_attachments_.empty() && view_.lidars.empty()) return;  // no index to build
     std::unordered_map<fe::ObjectId, int> index;
     for (size_t k = 0; k < view_.connectors.size(); ++k)
       index[view_.connectors[k].object] = static_cast<int>(k);
@@ -720,6 +721,9 @@ class SystemBuilder {
 
   // A composite's parts are signals of the tree, found by object.
   void resolve_composites() {
+    if (std::all_of(composite_parts_.begin(), composite_parts_.end(),
+                    [](const std::vector<fe::ObjectId>& parts) { return parts.empty(); }))
+      return;  // no index to build
     std::unordered_map<fe::ObjectId, int> index;
     for (size_t k = 0; k < view_.signals.size(); ++k) index[view_.signals[k].object] = static_cast<int>(k);
     for (size_t k = 0; k < view_.signals.size(); ++k) {
@@ -730,6 +734,7 @@ class SystemBuilder {
     }
   }
 
+  // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
   void resolve_source(Signal& signal, fe::ObjectId source) {
     if (source == fe::kNoObject) return;
     if (sources_.empty()) build_source_index();

@@ -20,8 +20,9 @@ std::vector<signed char> reachable(const fe::ObjectGraph& graph, fe::ObjectId ro
   const size_t count = graph.objects.size();
   std::vector<signed char> state(count, -1);
   state[root] = 1;
+  std::vector<size_t> chain;  // the undecided owners of one object, reused
   for (size_t id = 0; id < count; ++id) {
-    std::vector<size_t> chain;
+    chain.clear();
     size_t at = id;
     while (state[at] < 0) {
       chain.push_back(at);
