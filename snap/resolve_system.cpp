@@ -396,9 +396,9 @@ class SystemBuilder {
     if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
       body.mass = real(inertia, "mass");
       if (fe::ObjectId tensor = object(inertia, "tensor"); tensor != fe::kNoObject) {
+        const SlotTable<9>::Slots e = tensor_slots_.of(ev_.graph().at(tensor));
         for (int r = 0; r < 3; ++r) {
-          for (int c = 0; c < 3; ++c)
-            body.inertia(r, c) = real(tensor, "e" + std::to_string(r) + std::to_string(c));
+          for (int c = 0; c < 3; ++c) body.inertia(r, c) = in_.real(tensor, e[3 * r + c]);
         }
       }
     }
@@ -617,16 +617,16 @@ class SystemBuilder {
     signal.type = obj.type->qualified;
     // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
     // `source` is the signal it transforms.
-    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : object(id, "source");
-    signal_sources_.push_back(source != fe::kNoObject ? source : object(id, "torque_converter"));
+    const SignalSlots::Slots slots = signal_slots_.of(obj);
+    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : in_.object(id, slots[kSource]);
+    signal_sources_.push_back(source != fe::kNoObject ? source : in_.object(id, slots[kTorqueConverter]));
     signal.where = where_of(id);
-    if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
-      signal.enabled = e->bool_value;
+    signal.enabled = in_.boolean(id, slots[kEnabled]).value_or(signal.enabled);
     std::vector<fe::ObjectId> parts;
-    for (const char* list : {"targets", "joint_sources", "object_sources", "sources"}) {
-      if (!obj.has(list)) continue;
+    for (size_t list : {kTargets, kJointSources, kObjectSources, kSources}) {
+      if (!slots[list].present()) continue;
       signal.composite = true;
-      for (fe::ObjectId part : in_.objects(id, list)) parts.push_back(part);
+      for (fe::ObjectId part : in_.objects(id, slots[list])) parts.push_back(part);
     }
     using Composition = Signal::Composition;
     if (is(obj, broadcast_)) signal.composition = Composition::Broadcast;
@@ -637,7 +637,7 @@ class SystemBuilder {
       signal.offset = real(id, "offset", 0.0);
       parts = {object(id, signal.input ? "target" : "source")};
     }
-    if (obj.has("sensors")) signal.sensors = in_.objects(id, "sensors").size();
+    if (slots[kSensors].present()) signal.sensors = in_.objects(id, slots[kSensors]).size();
     if (is(obj, imu_output_)) {
       signal.imu = true;
       // A sensor without an attachment of its own sits where the IMU is attached.
@@ -789,17 +789,12 @@ class SystemBuilder {
   Eigen::Vector3d vec3(fe::ObjectId object, std::string_view name) { return in_.vec3(object, name); }
 
   Transform affine(fe::ObjectId transform) {
+    const auto [position, rotation] = transform_slots_.of(ev_.graph().at(transform));
     Transform t;
-    t.position = vec3(transform, "position");
-    const fe::Value* q = ev_.value(transform, "rotation");
-    if (q && q->kind == fe::Value::Kind::Object) {
-      double c[4] = {0, 0, 0, 1};
-      const char* names[] = {"x", "y", "z", "w"};
-      for (int i = 0; i < 4; ++i) {
-        const fe::Value* v = ev_.value(q->object, names[i]);
-        if (v && v->is_number()) c[i] = v->as_real();
-      }
-      t.rotation = natives::quat_normal(natives::quat_from_xyzw(c[0], c[1], c[2], c[3]));
+    t.position = in_.vec3(transform, position);
+    if (const fe::ObjectId q = in_.object(transform, rotation); q != fe::kNoObject) {
+      const auto [x, y, z, w] = in_.xyzw(q);
+      t.rotation = natives::quat_normal(natives::quat_from_xyzw(x, y, z, w));
     }
     return t;
   }
@@ -812,10 +807,11 @@ class SystemBuilder {
       if (!kinematics || kinematics->kind != fe::Value::Kind::Object) return false;
       holder = kinematics->object;
     }
-    const fe::Value* value = ev_.value(holder, "local_transform");
-    if (!value || value->kind != fe::Value::Kind::Object) return false;
-    out = affine(value->object);
-    return ev_.graph().at(holder).find("local_transform")->explicit_value;
+    const AttributeSlot slot = local_transform_slot_.of(ev_.graph().at(holder))[0];
+    const fe::ObjectId transform = in_.object(holder, slot);
+    if (transform == fe::kNoObject) return false;
+    out = affine(transform);
+    return ev_.graph().at(holder).slots[slot.index].explicit_value;
   }
 
   int add_node(fe::ObjectId id, int parent, bool is_root) {
@@ -1027,6 +1023,25 @@ class SystemBuilder {
   AttributeReader in_;
   fe::DiagnosticSink& sink_;
   ResolvedSystem view_;
+  // Attributes read on every instance of a model, found once per layout (AttributeReader has Math.Vec3's
+  // and Math.Quat's): a Math.AffineTransform's, a Math.Matrix3x3's, the transform of a system or of a
+  // body's kinematics, and a signal's (an Input's or Output's, composites' and sources' included).
+  SlotTable<2> transform_slots_{{"position", "rotation"}};
+  SlotTable<9> tensor_slots_{{"e00", "e01", "e02", "e10", "e11", "e12", "e20", "e21", "e22"}};
+  SlotTable<1> local_transform_slot_{{"local_transform"}};
+  enum SignalAttribute : size_t {
+    kSource,
+    kTorqueConverter,
+    kEnabled,
+    kTargets,
+    kJointSources,
+    kObjectSources,
+    kSources,
+    kSensors
+  };
+  using SignalSlots = SlotTable<8>;
+  SignalSlots signal_slots_{{"source", "torque_converter", "enabled", "targets", "joint_sources",
+                             "object_sources", "sources", "sensors"}};
   std::vector<fe::ObjectId> geometry_materials_;                      // per geometry: its `material`
   std::vector<std::vector<fe::ObjectId>> composite_parts_;            // per signal: a composite's parts
   std::vector<fe::ObjectId> signal_sources_;                          // per signal: its `source`
