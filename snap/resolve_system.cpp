@@ -167,15 +167,14 @@ class SystemBuilder {
     int node = enclosing;
     const Role role = role_of(obj.type);
     if (role.unsupported && !is_root) {
-      view_.unsupported.push_back({id, ev_.graph().path(id), role.unsupported->qualified, where_of(id)});
+      view_.unsupported.push_back({id, path_of(id), role.unsupported->qualified, where_of(id)});
       return;  // nothing inside maps either
     }
     switch (role.kind) {
       case Role::Kind::Shaft: {
         const fe::ObjectId inertia = object(id, "inertia");
-        view_.shafts.push_back({id, ev_.graph().path(id),
-                                inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0),
-                                where_of(id)});
+        view_.shafts.push_back(
+            {id, path_of(id), inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0), where_of(id)});
         break;
       }
       case Role::Kind::Coupling: {
@@ -190,7 +189,7 @@ class SystemBuilder {
                  : is(obj, mean_value_engine_) || is(obj, empirical_engine_) ? Kind::Engine
                                                                              : Kind::Actuator;
         c.object = id;
-        c.path = ev_.graph().path(id);
+        c.path = path_of(id);
         c.where = where_of(id);
         read_drive_parameters(in_, id, c);
         view_.couplings.push_back(std::move(c));
@@ -220,7 +219,7 @@ class SystemBuilder {
       case Role::Kind::ContactModel: {
         ContactModel model;
         model.object = id;
-        model.path = ev_.graph().path(id);
+        model.path = path_of(id);
         model.material1 = material_index(object(id, "material_1"));
         model.material2 = material_index(object(id, "material_2"));
         model.where = where_of(id);
@@ -229,13 +228,12 @@ class SystemBuilder {
         break;
       }
       case Role::Kind::Mimic:
-        view_.joint_couplings.push_back({id, ev_.graph().path(id), -1, -1, real(id, "multiplier", 1.0),
-                                         real(id, "offset", 0.0), where_of(id)});
+        view_.joint_couplings.push_back(
+            {id, path_of(id), -1, -1, real(id, "multiplier", 1.0), real(id, "offset", 0.0), where_of(id)});
         break;
       case Role::Kind::JointProperties:
-        view_.joint_properties.push_back({id, ev_.graph().path(id), -1, real(id, "damping"),
-                                          real(id, "friction"), real(id, "effort"), real(id, "velocity"),
-                                          where_of(id)});
+        view_.joint_properties.push_back({id, path_of(id), -1, real(id, "damping"), real(id, "friction"),
+                                          real(id, "effort"), real(id, "velocity"), where_of(id)});
         break;
       case Role::Kind::PackagePath:
         if (const fe::Value* name = ev_.value(id, "name"); name && name->kind == fe::Value::Kind::String) {
@@ -245,7 +243,7 @@ class SystemBuilder {
         }
         break;
       case Role::Kind::CollisionFilter:
-        view_.collision_filters.push_back({id, ev_.graph().path(id), {}, {}, where_of(id)});
+        view_.collision_filters.push_back({id, path_of(id), {}, {}, where_of(id)});
         filter_groups_.emplace_back(object(id, "group1"), object(id, "group2"));
         break;
       case Role::Kind::Lidar:
@@ -254,7 +252,7 @@ class SystemBuilder {
       case Role::Kind::Terrain: {
         Terrain t;
         t.object = id;
-        t.path = ev_.graph().path(id);
+        t.path = path_of(id);
         t.parent = enclosing;
         read_transform(id, t.local);
         t.num_x = count(id, "num_elements_x");
@@ -416,7 +414,7 @@ class SystemBuilder {
     g.object = id;
     g.visual = is(obj, visual_geometry_);
     g.owner = owner;
-    g.path = ev_.graph().path(id);
+    g.path = path_of(id);
     g.where = where_of(id);
     for (const auto& [model, shape] : shapes_) {
       if (obj.type->is_subtype_of(model)) g.shape = shape;
@@ -465,7 +463,7 @@ class SystemBuilder {
   void add_interaction(fe::ObjectId id) {
     Interaction1D interaction;
     interaction.object = id;
-    interaction.path = ev_.graph().path(id);
+    interaction.path = path_of(id);
     interaction.where = where_of(id);
     for (const auto& [model, kind] : kinds1d_) {
       if (ev_.graph().at(id).type->is_subtype_of(model)) interaction.kind = kind;
@@ -613,7 +611,7 @@ class SystemBuilder {
     Signal signal;
     signal.object = id;
     signal.input = is(obj, input_);
-    signal.path = ev_.graph().path(id);
+    signal.path = path_of(id);
     signal.type = obj.type->qualified;
     // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
     // `source` is the signal it transforms.
@@ -655,7 +653,7 @@ class SystemBuilder {
                    : is(logic, gyroscope_)    ? Kind::Gyroscope
                    : is(logic, magnetometer_) ? Kind::Magnetometer
                                               : Kind::Unknown;
-          f.sensor_path = ev_.graph().path(sensor);
+          f.sensor_path = path_of(sensor);
           const fe::ObjectId own = object(sensor, "mate_connector_attachment");
           sensor_attachments_.emplace_back(view_.signals.size(), signal.sensor_fields.size(),
                                            own != fe::kNoObject ? own : imu_attachment);
@@ -745,7 +743,7 @@ class SystemBuilder {
       return;
     }
     signal.source_kind = SignalSource::Other;
-    signal.source_path = ev_.graph().path(source);
+    signal.source_path = path_of(source);
   }
   void build_source_index() {
     // Inserted in reverse priority, so an object that were two things would keep the first kind.
@@ -764,6 +762,37 @@ class SystemBuilder {
   }
 
   fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
+
+  // ObjectGraph::path, built on the owner's path when that is kept (a body's signals and connectors share
+  // it).
+  std::string path_of(fe::ObjectId id) {
+    const fe::Object& obj = ev_.graph().at(id);
+    const std::string* owner = obj.owner == fe::kNoObject ? nullptr : rooted_path(obj.owner);
+    return owner ? joined_path(*owner, obj.name) : ev_.graph().path(id);
+  }
+
+  // The path of the root or of an object below it, kept: an owned object keeps its owner and name, so its
+  // path never changes. Null under a free object (a value the evaluator may yet adopt).
+  const std::string* rooted_path(fe::ObjectId id) {
+    if (auto it = rooted_paths_.find(id); it != rooted_paths_.end()) return &it->second;
+    const fe::Object& obj = ev_.graph().at(id);
+    if (obj.owner == fe::kNoObject) {
+      if (id != ev_.graph().root) return nullptr;
+      return &rooted_paths_.emplace(id, ev_.graph().path(id)).first->second;
+    }
+    const std::string* owner = rooted_path(obj.owner);
+    if (!owner) return nullptr;
+    return &rooted_paths_.emplace(id, joined_path(*owner, obj.name)).first->second;
+  }
+
+  // ObjectGraph::path's rule: the owner's path, a dot and the name; no dot after an empty path (the root's).
+  static std::string joined_path(const std::string& owner, const std::string& name) {
+    std::string path;
+    path.reserve(owner.size() + 1 + name.size());
+    if (!owner.empty()) (path += owner) += '.';
+    path += name;
+    return path;
+  }
 
   // ConvexMesh/TriMesh vertices (Math.Vec3 instances) and TriMesh triangle indices.
   void read_mesh_data(fe::ObjectId id, Geometry& g) {
@@ -820,7 +849,7 @@ class SystemBuilder {
         ev_.graph().at(id).type->is_subtype_of(system_) ? FrameNode::Kind::System : FrameNode::Kind::Body;
     node.object = id;
     node.parent = parent;
-    node.path = ev_.graph().path(id);
+    node.path = path_of(id);
     node.defined = read_transform(id, node.local) || is_root;  // the root frame never moves
     node.where = where_of(id);
     if (node.kind == FrameNode::Kind::Body) read_body(id, node.body);
@@ -844,7 +873,7 @@ class SystemBuilder {
     Connector c;
     c.object = id;
     c.owner = owner;
-    c.path = ev_.graph().path(id);
+    c.path = path_of(id);
     const fe::ModelInfo* type = ev_.graph().at(id).type;
     c.adaptive = (adaptive_ && type->is_subtype_of(adaptive_)) ||
                  (adaptive_trait_ && type->is_subtype_of(adaptive_trait_));
@@ -866,7 +895,7 @@ class SystemBuilder {
     std::optional<Transform> frame = natives::affine_from_axes(main_axis, normal, position);
     if (!frame) {
       sink_.report(fe::DiagCode::InvalidConnector, where,
-                   "mate connector " + ev_.graph().path(id) +
+                   "mate connector " + path_of(id) +
                        " has no frame: main_axis must be non-zero and normal must not be parallel to it");
       return Transform{position, Eigen::Quaterniond::Identity()};
     }
@@ -876,7 +905,7 @@ class SystemBuilder {
   void add_mate(fe::ObjectId id) {
     Mate mate;
     mate.object = id;
-    mate.path = ev_.graph().path(id);
+    mate.path = path_of(id);
     // A URDF joint renamed in OpenPLX (it shares its name with a link) keeps its URDF name in MuJoCo.
     if (const fe::Value* urdf = ev_.value(id, "urdf_name"); urdf && urdf->kind == fe::Value::Kind::String) {
       const size_t dot = mate.path.rfind('.');
@@ -1014,7 +1043,7 @@ class SystemBuilder {
         continue;
       }
       sink_.report(fe::DiagCode::InvalidMate, mate.where,
-                   "connector " + ev_.graph().path(item.object) + " of mate " + mate.path +
+                   "connector " + path_of(item.object) + " of mate " + mate.path +
                        " belongs to no system or body of this model");
     }
   }
@@ -1108,6 +1137,7 @@ class SystemBuilder {
   std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;
+  std::unordered_map<fe::ObjectId, std::string> rooted_paths_;  // see rooted_path
 };
 
 }  // namespace
