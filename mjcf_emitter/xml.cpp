@@ -82,6 +82,7 @@ Element& Element::set(std::string_view key, std::string value) {
       return *this;
     }
   }
+  if (attributes_.empty()) attributes_.reserve(4);  // most elements have a few: one allocation
   attributes_.emplace_back(std::string(key), std::move(value));
   return *this;
 }
