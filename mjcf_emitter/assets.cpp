@@ -87,13 +87,16 @@ std::string Lowering::vertex_mesh_asset(const sn::Geometry& g) {
   }
   std::string vertex, face;
   for (const Eigen::Vector3d& p : g.vertices) {
-    vertex += (vertex.empty() ? "" : " ") + number(p.x()) + " " + number(p.y()) + " " + number(p.z());
+    for (double coordinate : {p.x(), p.y(), p.z()}) {
+      if (!vertex.empty()) vertex += ' ';
+      append_number(vertex, coordinate);
+    }
   }
-  for (int k : g.indices) face += (face.empty() ? "" : " ") + std::to_string(k);
+  for (int k : g.indices) (face += face.empty() ? "" : " ") += std::to_string(k);
   const std::string mesh_name = name(g.path);
   Element& mesh = assets_->add("mesh");
-  mesh.set("name", mesh_name).set("vertex", vertex);
-  if (!face.empty()) mesh.set("face", face);
+  mesh.set("name", mesh_name).set("vertex", std::move(vertex));
+  if (!face.empty()) mesh.set("face", std::move(face));
   return mesh_name;
 }
 

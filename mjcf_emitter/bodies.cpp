@@ -9,6 +9,13 @@ namespace openplx::mjcf {
 using natives::affine_compose;
 using natives::affine_inverse;
 
+namespace {
+// MJCF's fullinertia: the moments, then the products (xy, xz, yz).
+std::string full_inertia(const Eigen::Matrix3d& i) {
+  return numbers({i(0, 0), i(1, 1), i(2, 2), i(0, 1), i(0, 2), i(1, 2)});
+}
+}  // namespace
+
 std::string Lowering::geom_class(const char* kind) const {
   return options_.prefix + kind;
 }
@@ -132,12 +139,11 @@ void Lowering::emit_inertial(Element& body, int node) {
       Eigen::Matrix3d axes = principal.eigenvectors();
       if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
       const Eigen::Quaterniond q(axes);
-      inertial.set("quat", number(q.w()) + " " + number(q.x()) + " " + number(q.y()) + " " + number(q.z()))
+      inertial.set("quat", numbers({q.w(), q.x(), q.y(), q.z()}))
           .set("diaginertia", principal.eigenvalues().cwiseMax(0.0).eval());
       return;
     }
-    inertial.set("fullinertia", number(i(0, 0)) + " " + number(i(1, 1)) + " " + number(i(2, 2)) + " " +
-                                    number(i(0, 1)) + " " + number(i(0, 2)) + " " + number(i(1, 2)));
+    inertial.set("fullinertia", full_inertia(i));
     return;
   }
   std::vector<std::pair<const sn::Geometry*, double>> parts;
@@ -177,12 +183,7 @@ void Lowering::emit_inertial(Element& body, int node) {
     p->mass = n.body.mass;
   }
   body_mass_[node] = *p;
-  body.add("inertial")
-      .set("pos", p->com)
-      .set("mass", p->mass)
-      .set("fullinertia", number(p->inertia(0, 0)) + " " + number(p->inertia(1, 1)) + " " +
-                              number(p->inertia(2, 2)) + " " + number(p->inertia(0, 1)) + " " +
-                              number(p->inertia(0, 2)) + " " + number(p->inertia(1, 2)));
+  body.add("inertial").set("pos", p->com).set("mass", p->mass).set("fullinertia", full_inertia(p->inertia));
 }
 
 void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Transform& pose, bool on_static) {
@@ -211,7 +212,7 @@ void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Trans
     case Shape::Cylinder:
     case Shape::Capsule:
       geom.set("type", g.shape == Shape::Cylinder ? "cylinder" : "capsule")
-          .set("size", number(g.size.x()) + " " + number(g.size.y() / 2));
+          .set("size", numbers({g.size.x(), g.size.y() / 2}));
       frame.rotation = frame.rotation * y_to_z;
       break;
     case Shape::Plane:

@@ -63,7 +63,10 @@ std::vector<double> Lowering::initial_qvel() {
 
 std::string Lowering::joined(const std::vector<double>& values) {
   std::string text;
-  for (double v : values) text += (text.empty() ? "" : " ") + number(v);
+  for (double v : values) {
+    if (!text.empty()) text += ' ';
+    append_number(text, v);
+  }
   return text;
 }
 

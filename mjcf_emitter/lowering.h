@@ -77,7 +77,8 @@ class Lowering {
   static SignalBinding mapped(SignalBinding b, Quantity quantity, MjObject object, std::string element) {
     b.quantity = quantity;
     b.object = object;
-    b.names = {std::move(element)};
+    b.names.clear();
+    b.names.push_back(std::move(element));  // moved: a braced list would copy it
     return b;
   }
   static bool any_of(std::string_view stem, std::initializer_list<std::string_view> stems) {

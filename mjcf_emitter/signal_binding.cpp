@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -9,6 +10,9 @@
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::mjcf {
+
+using namespace std::string_view_literals;  // literals appended with their length known
+
 namespace {
 
 bool ends_with(std::string_view text, std::string_view suffix) {
@@ -242,82 +246,115 @@ double steering_polynomial_inverse(const std::vector<double>& c, double y) {
 
 namespace {
 
-std::string json_number(double value) {
-  if (std::isnan(value)) return "\"nan\"";
-  if (std::isinf(value)) return value > 0 ? "\"inf\"" : "\"-inf\"";
-  return number(value);
+// Appends a JSON number; numbers JSON cannot hold are the strings "nan", "inf" and "-inf".
+void append_json_number(std::string& out, double value) {
+  if (std::isnan(value)) {
+    out += "\"nan\""sv;
+  } else if (std::isinf(value)) {
+    out += value > 0 ? "\"inf\""sv : "\"-inf\""sv;
+  } else {
+    append_number(out, value);
+  }
 }
 
 void append_numbers(std::string& out, const char* key, const std::vector<double>& values) {
-  ((out += ", \"") += key) += "\": [";
-  for (size_t k = 0; k < values.size(); ++k) (out += k ? ", " : "") += json_number(values[k]);
+  ((out += ", \""sv) += key) += "\": ["sv;
+  for (size_t k = 0; k < values.size(); ++k) {
+    if (k) out += ", "sv;
+    append_json_number(out, values[k]);
+  }
   out += ']';
+}
+
+// The characters frontend::append_quoted escapes, as a table: one load per character scanned.
+constexpr std::array<bool, 256> kEscaped = [] {
+  std::array<bool, 256> table{};
+  for (unsigned char c : {'"', '\\', '\n', '\t', '\r'}) table[c] = true;
+  return table;
+}();
+
+bool needs_escape(char c) {
+  return kEscaped[static_cast<unsigned char>(c)];
+}
+
+// A JSON string as frontend::append_quoted writes it; names and paths rarely hold anything to escape, so
+// those are copied whole after one plain scan.
+void append_string(std::string& out, std::string_view text) {
+  if (std::any_of(text.begin(), text.end(), needs_escape)) {
+    frontend::append_quoted(out, text);
+    return;
+  }
+  ((out += '"') += text) += '"';
 }
 
 }  // namespace
 
 std::string manifest_json(std::string_view model_name, std::string_view prefix,
                           const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws) {
-  using frontend::append_quoted;
   // Appended in place: a large model has tens of thousands of signals.
   std::string out;
   out.reserve(64 + 400 * bindings.size());  // a little over what one binding takes: one allocation
-  out += "{\n  \"model\": ";
-  append_quoted(out, model_name);
-  out += ",\n  \"prefix\": ";
-  append_quoted(out, prefix);
-  out += ",\n  \"signals\": [";
+  out += "{\n  \"model\": "sv;
+  append_string(out, model_name);
+  out += ",\n  \"prefix\": "sv;
+  append_string(out, prefix);
+  out += ",\n  \"signals\": ["sv;
   bool first = true;
   for (const SignalBinding& b : bindings) {
-    out += first ? "\n    {\"path\": " : ",\n    {\"path\": ";
+    out += first ? "\n    {\"path\": "sv : ",\n    {\"path\": "sv;
     first = false;
-    append_quoted(out, b.path);
-    (out += ", \"direction\": \"") += b.input ? "input" : "output";
-    out += "\", \"type\": ";
-    append_quoted(out, b.type);
-    ((out += ", \"value\": \"") += to_string(b.value)) += "\", \"unit\": ";
-    append_quoted(out, b.unit);
-    (out += ", \"enabled\": ") += b.enabled ? "true" : "false";
-    ((out += ", \"quantity\": \"") += to_string(b.quantity)) += "\", \"object\": \"";
-    (out += to_string(b.object)) += "\", \"names\": [";
+    append_string(out, b.path);
+    (out += ", \"direction\": \""sv) += b.input ? "input"sv : "output"sv;
+    out += "\", \"type\": "sv;
+    append_string(out, b.type);
+    ((out += ", \"value\": \""sv) += to_string(b.value)) += "\", \"unit\": "sv;
+    append_string(out, b.unit);
+    (out += ", \"enabled\": "sv) += b.enabled ? "true"sv : "false"sv;
+    ((out += ", \"quantity\": \""sv) += to_string(b.quantity)) += "\", \"object\": \""sv;
+    (out += to_string(b.object)) += "\", \"names\": ["sv;
     for (size_t k = 0; k < b.names.size(); ++k) {
-      if (k) out += ", ";
-      append_quoted(out, b.names[k]);
+      if (k) out += ", "sv;
+      append_string(out, b.names[k]);
     }
-    out += "], \"sensor\": ";
-    append_quoted(out, b.sensor);
-    (out += ", \"sign\": ") += json_number(b.sign);
-    (out += ", \"initial\": ") += json_number(b.initial);
+    out += "], \"sensor\": "sv;
+    append_string(out, b.sensor);
+    out += ", \"sign\": "sv;
+    append_json_number(out, b.sign);
+    out += ", \"initial\": "sv;
+    append_json_number(out, b.initial);
     append_numbers(out, "initial_vector", b.initial_vector);
-    (out += ", \"low\": ") += json_number(b.low);
-    (out += ", \"high\": ") += json_number(b.high);
-    out += ", \"reason\": ";
-    append_quoted(out, b.reason);
-    (out += ", \"runtime\": ") += b.runtime ? "true" : "false";
+    out += ", \"low\": "sv;
+    append_json_number(out, b.low);
+    out += ", \"high\": "sv;
+    append_json_number(out, b.high);
+    out += ", \"reason\": "sv;
+    append_string(out, b.reason);
+    (out += ", \"runtime\": "sv) += b.runtime ? "true"sv : "false"sv;
     out += '}';
   }
-  out += "\n  ],\n  \"laws\": [";
+  out += "\n  ],\n  \"laws\": ["sv;
   first = true;
   for (const RuntimeLaw& law : laws) {
-    out += first ? "\n    {\"kind\": \"" : ",\n    {\"kind\": \"";
+    out += first ? "\n    {\"kind\": \""sv : ",\n    {\"kind\": \""sv;
     first = false;
-    out += law.kind == RuntimeLaw::Kind::Engine ? "engine" : "torque_converter";
-    out += "\", \"path\": ";
-    append_quoted(out, law.path);
-    out += ", \"actuators\": [";
+    out += law.kind == RuntimeLaw::Kind::Engine ? "engine"sv : "torque_converter"sv;
+    out += "\", \"path\": "sv;
+    append_string(out, law.path);
+    out += ", \"actuators\": ["sv;
     for (size_t k = 0; k < law.actuators.size(); ++k) {
-      if (k) out += ", ";
-      append_quoted(out, law.actuators[k]);
+      if (k) out += ", "sv;
+      append_string(out, law.actuators[k]);
     }
     out += ']';
     append_numbers(out, "curve_x", law.curve_x);
     append_numbers(out, "curve_y", law.curve_y);
     append_numbers(out, "curve2_x", law.curve2_x);
     append_numbers(out, "curve2_y", law.curve2_y);
-    (out += ", \"parameter\": ") += json_number(law.parameter);
+    out += ", \"parameter\": "sv;
+    append_json_number(out, law.parameter);
     out += '}';
   }
-  out += "\n  ]\n}\n";
+  out += "\n  ]\n}\n"sv;
   return out;
 }
 

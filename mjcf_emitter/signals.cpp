@@ -21,6 +21,7 @@ SignalBinding binding_of(const sn::Signal& s) {
 void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   sensors_ = &root.add("sensor");
   emit_lidars();
+  out.reserve(out.size() + view_.signals.size());
   for (const sn::Signal& s : view_.signals)
     out.push_back(s.composite ? SignalBinding{} : s.imu ? bind_imu(s) : bind(s));
   // Composites after their parts.

@@ -8,10 +8,18 @@
 namespace openplx::mjcf {
 namespace {
 
-std::string escaped(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
+bool needs_entity(char c) {
+  return c == '&' || c == '<' || c == '>' || c == '"';
+}
+
+// Appends an attribute value with & < > " as entities; runs without them are copied whole.
+void append_escaped(std::string& out, std::string_view text) {
+  while (!text.empty()) {
+    size_t plain = 0;
+    while (plain < text.size() && !needs_entity(text[plain])) ++plain;
+    out.append(text.substr(0, plain));
+    if (plain == text.size()) return;
+    switch (text[plain]) {
       case '&':
         out += "&amp;";
         break;
@@ -21,23 +29,43 @@ std::string escaped(std::string_view text) {
       case '>':
         out += "&gt;";
         break;
-      case '"':
+      default:
         out += "&quot;";
         break;
-      default:
-        out += c;
     }
+    text.remove_prefix(plain + 1);
   }
-  return out;
 }
 
 }  // namespace
 
 std::string number(double value) {
-  if (value == 0.0) return "0";  // also folds -0, which MuJoCo reads the same
+  std::string out;
+  append_number(out, value);
+  return out;
+}
+
+void append_number(std::string& out, double value) {
+  if (value == 0.0) {  // also folds -0, which MuJoCo reads the same
+    out += '0';
+    return;
+  }
   char buffer[64];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, end);
+  // A whole number below 10^4 is its digits in shortest form too (fixed notation is never longer than
+  // scientific there): the integer conversion skips the general algorithm.
+  const bool small_whole = std::abs(value) < 1e4 && value == std::trunc(value);
+  const auto [end, ec] = small_whole ? std::to_chars(buffer, buffer + sizeof(buffer), static_cast<int>(value))
+                                     : std::to_chars(buffer, buffer + sizeof(buffer), value);
+  out.append(buffer, end);
+}
+
+std::string numbers(std::initializer_list<double> values) {
+  std::string out;
+  for (double value : values) {
+    if (!out.empty()) out += ' ';
+    append_number(out, value);
+  }
+  return out;
 }
 
 Element* Element::child(std::string_view name) {
@@ -54,6 +82,7 @@ Element& Element::set(std::string_view key, std::string value) {
       return *this;
     }
   }
+  if (attributes_.empty()) attributes_.reserve(4);  // most elements have a few: one allocation
   attributes_.emplace_back(std::string(key), std::move(value));
   return *this;
 }
@@ -66,13 +95,13 @@ Element& Element::erase(std::string_view key) {
 }
 
 Element& Element::set(std::string_view key, const Eigen::Vector3d& v) {
-  return set(key, number(v.x()) + " " + number(v.y()) + " " + number(v.z()));
+  return set(key, numbers({v.x(), v.y(), v.z()}));
 }
 
 Element& Element::set_quat(std::string_view key, const Eigen::Quaterniond& q) {
   Eigen::Quaterniond n = q.normalized();
   if (n.w() < 0) n.coeffs() = -n.coeffs();
-  return set(key, number(n.w()) + " " + number(n.x()) + " " + number(n.y()) + " " + number(n.z()));
+  return set(key, numbers({n.w(), n.x(), n.y(), n.z()}));
 }
 
 Element& Element::add(std::string name) {
@@ -103,10 +132,14 @@ std::string Element::to_string() const {
   while (!stack.empty()) {
     Frame& frame = stack.back();
     const Element& e = *frame.element;
-    const std::string indent(frame.depth * 2, ' ');
     if (frame.next == 0) {
-      out += indent + "<" + e.name_;
-      for (const auto& [k, v] : e.attributes_) out += " " + k + "=\"" + escaped(v) + "\"";
+      out.append(frame.depth * 2, ' ');
+      (out += '<') += e.name_;
+      for (const auto& [k, v] : e.attributes_) {
+        ((out += ' ') += k) += "=\"";
+        append_escaped(out, v);
+        out += '"';
+      }
       if (e.children_.empty()) {
         out += "/>\n";
         stack.pop_back();
@@ -119,7 +152,8 @@ std::string Element::to_string() const {
       stack.push_back({child, 0, frame.depth + 1});
       continue;
     }
-    out += indent + "</" + e.name_ + ">\n";
+    out.append(frame.depth * 2, ' ');
+    ((out += "</") += e.name_) += ">\n";
     stack.pop_back();
   }
   return out;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -13,6 +14,10 @@ namespace openplx::mjcf {
 
 // Shortest text that reads back as the same double ("0.5", "1e-07", "-0"); never locale-dependent.
 std::string number(double value);
+// Appends number(value) to `out`, with no string of its own.
+void append_number(std::string& out, double value);
+// Numbers separated by single spaces ("0 0 1.5"), as MJCF writes vectors.
+std::string numbers(std::initializer_list<double> values);
 
 class Element {
  public:

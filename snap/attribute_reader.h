@@ -2,6 +2,7 @@
 // kind gives the fallback, never an error (the evaluator has already reported bad values).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,6 +13,45 @@
 
 namespace openplx::snap {
 
+// Where an attribute sits in the objects of one layout, found ahead of reading it (SlotTable).
+struct AttributeSlot {
+  static constexpr uint32_t kAbsent = UINT32_MAX;
+  uint32_t index = kAbsent;
+  bool present() const { return index != kAbsent; }
+};
+
+// The slots of a fixed list of attribute names, per layout: the instances of one layout share their slot
+// index, so reading the same attributes of many instances looks each name up once, not once per read.
+template <size_t N>
+class SlotTable {
+ public:
+  using Slots = std::array<AttributeSlot, N>;
+  explicit SlotTable(std::array<std::string_view, N> names) : names_(names) {}
+
+  Slots of(const frontend::Object& object) {
+    if (object.layout >= rows_.size()) rows_.resize(object.layout + 1);
+    Row& row = rows_[object.layout];
+    if (row.index != object.index.get()) {  // first met (the index confirms the layout)
+      row.index = object.index.get();
+      for (size_t k = 0; k < N; ++k) {
+        auto it = object.index->find(names_[k]);
+        row.slots[k] = it == object.index->end() ? AttributeSlot{} : AttributeSlot{it->second};
+      }
+    }
+    return row.slots;
+  }
+
+ private:
+  struct Row {
+    const frontend::SlotIndex* index = nullptr;
+    Slots slots;
+  };
+  std::array<std::string_view, N> names_;
+  std::vector<Row> rows_;  // by layout
+};
+
+// Attributes are named (a string) or found ahead (an AttributeSlot). A read by slot marks the attribute used
+// only while the evaluator tracks reads, as it does while resolve_system builds the view.
 class AttributeReader {
  public:
   explicit AttributeReader(frontend::Evaluator& evaluator) : ev_(evaluator) {}
@@ -19,15 +59,23 @@ class AttributeReader {
   frontend::Evaluator& evaluator() { return ev_; }
   const frontend::ObjectGraph& graph() const { return ev_.graph(); }
 
-  std::optional<double> number(frontend::ObjectId id, std::string_view name) {
-    const frontend::Value* v = ev_.value(id, name);
+  const frontend::Value* value(frontend::ObjectId id, std::string_view name) { return ev_.value(id, name); }
+  const frontend::Value* value(frontend::ObjectId id, AttributeSlot slot) {
+    return slot.present() ? &ev_.value(id, slot.index) : nullptr;
+  }
+
+  template <typename Attribute>
+  std::optional<double> number(frontend::ObjectId id, const Attribute& attribute) {
+    const frontend::Value* v = value(id, attribute);
     return v && v->is_number() ? std::optional<double>(v->as_real()) : std::nullopt;
   }
-  double real(frontend::ObjectId id, std::string_view name, double fallback = 0.0) {
-    return number(id, name).value_or(fallback);
+  template <typename Attribute>
+  double real(frontend::ObjectId id, const Attribute& attribute, double fallback = 0.0) {
+    return number(id, attribute).value_or(fallback);
   }
-  std::optional<bool> boolean(frontend::ObjectId id, std::string_view name) {
-    const frontend::Value* v = ev_.value(id, name);
+  template <typename Attribute>
+  std::optional<bool> boolean(frontend::ObjectId id, const Attribute& attribute) {
+    const frontend::Value* v = value(id, attribute);
     return v && v->kind == frontend::Value::Kind::Bool ? std::optional<bool>(v->bool_value) : std::nullopt;
   }
   std::optional<std::string> string(frontend::ObjectId id, std::string_view name) {
@@ -35,14 +83,16 @@ class AttributeReader {
     return v && v->kind == frontend::Value::Kind::String ? std::optional<std::string>(v->string_value())
                                                          : std::nullopt;
   }
-  frontend::ObjectId object(frontend::ObjectId id, std::string_view name) {
-    const frontend::Value* v = ev_.value(id, name);
+  template <typename Attribute>
+  frontend::ObjectId object(frontend::ObjectId id, const Attribute& attribute) {
+    const frontend::Value* v = value(id, attribute);
     return v && v->kind == frontend::Value::Kind::Object ? v->object : frontend::kNoObject;
   }
   // The objects of an array attribute, in order (items that are not objects are skipped).
-  std::vector<frontend::ObjectId> objects(frontend::ObjectId id, std::string_view name) {
+  template <typename Attribute>
+  std::vector<frontend::ObjectId> objects(frontend::ObjectId id, const Attribute& attribute) {
     std::vector<frontend::ObjectId> out;
-    const frontend::Value* v = ev_.value(id, name);
+    const frontend::Value* v = value(id, attribute);
     if (v && v->kind == frontend::Value::Kind::Array) {
       for (const frontend::Value& item : v->array())
         if (item.kind == frontend::Value::Kind::Object) out.push_back(item.object);
@@ -51,14 +101,26 @@ class AttributeReader {
   }
   const std::string& type_name(frontend::ObjectId id) const { return graph().at(id).type->qualified; }
   // A Math.Vec3 attribute (zero when absent; a component that is not a number is 0).
-  Eigen::Vector3d vec3(frontend::ObjectId id, std::string_view name) {
-    const frontend::ObjectId v = object(id, name);
+  template <typename Attribute>
+  Eigen::Vector3d vec3(frontend::ObjectId id, const Attribute& attribute) {
+    const frontend::ObjectId v = object(id, attribute);
     if (v == frontend::kNoObject) return Eigen::Vector3d::Zero();
-    return {real(v, "x"), real(v, "y"), real(v, "z")};
+    const SlotTable<3>::Slots xyz = xyz_.of(graph().at(v));
+    return {real(v, xyz[0]), real(v, xyz[1]), real(v, xyz[2])};
+  }
+  // A Math.Quat's components x, y, z, w; one absent or not a number is 0 (w: 1).
+  std::array<double, 4> xyzw(frontend::ObjectId quat) {
+    const SlotTable<4>::Slots slots = xyzw_.of(graph().at(quat));
+    std::array<double, 4> c = {0, 0, 0, 1};
+    for (size_t i = 0; i < c.size(); ++i) c[i] = real(quat, slots[i], c[i]);
+    return c;
   }
 
  private:
   frontend::Evaluator& ev_;
+  // Vectors and quaternions are read on every transform and connector.
+  SlotTable<3> xyz_{{"x", "y", "z"}};
+  SlotTable<4> xyzw_{{"x", "y", "z", "w"}};
 };
 
 }  // namespace openplx::snap

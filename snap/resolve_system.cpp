@@ -167,15 +167,14 @@ class SystemBuilder {
     int node = enclosing;
     const Role role = role_of(obj.type);
     if (role.unsupported && !is_root) {
-      view_.unsupported.push_back({id, ev_.graph().path(id), role.unsupported->qualified, where_of(id)});
+      view_.unsupported.push_back({id, path_of(id), role.unsupported->qualified, where_of(id)});
       return;  // nothing inside maps either
     }
     switch (role.kind) {
       case Role::Kind::Shaft: {
         const fe::ObjectId inertia = object(id, "inertia");
-        view_.shafts.push_back({id, ev_.graph().path(id),
-                                inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0),
-                                where_of(id)});
+        view_.shafts.push_back(
+            {id, path_of(id), inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0), where_of(id)});
         break;
       }
       case Role::Kind::Coupling: {
@@ -190,7 +189,7 @@ class SystemBuilder {
                  : is(obj, mean_value_engine_) || is(obj, empirical_engine_) ? Kind::Engine
                                                                              : Kind::Actuator;
         c.object = id;
-        c.path = ev_.graph().path(id);
+        c.path = path_of(id);
         c.where = where_of(id);
         read_drive_parameters(in_, id, c);
         view_.couplings.push_back(std::move(c));
@@ -220,7 +219,7 @@ class SystemBuilder {
       case Role::Kind::ContactModel: {
         ContactModel model;
         model.object = id;
-        model.path = ev_.graph().path(id);
+        model.path = path_of(id);
         model.material1 = material_index(object(id, "material_1"));
         model.material2 = material_index(object(id, "material_2"));
         model.where = where_of(id);
@@ -229,13 +228,12 @@ class SystemBuilder {
         break;
       }
       case Role::Kind::Mimic:
-        view_.joint_couplings.push_back({id, ev_.graph().path(id), -1, -1, real(id, "multiplier", 1.0),
-                                         real(id, "offset", 0.0), where_of(id)});
+        view_.joint_couplings.push_back(
+            {id, path_of(id), -1, -1, real(id, "multiplier", 1.0), real(id, "offset", 0.0), where_of(id)});
         break;
       case Role::Kind::JointProperties:
-        view_.joint_properties.push_back({id, ev_.graph().path(id), -1, real(id, "damping"),
-                                          real(id, "friction"), real(id, "effort"), real(id, "velocity"),
-                                          where_of(id)});
+        view_.joint_properties.push_back({id, path_of(id), -1, real(id, "damping"), real(id, "friction"),
+                                          real(id, "effort"), real(id, "velocity"), where_of(id)});
         break;
       case Role::Kind::PackagePath:
         if (const fe::Value* name = ev_.value(id, "name"); name && name->kind == fe::Value::Kind::String) {
@@ -245,7 +243,7 @@ class SystemBuilder {
         }
         break;
       case Role::Kind::CollisionFilter:
-        view_.collision_filters.push_back({id, ev_.graph().path(id), {}, {}, where_of(id)});
+        view_.collision_filters.push_back({id, path_of(id), {}, {}, where_of(id)});
         filter_groups_.emplace_back(object(id, "group1"), object(id, "group2"));
         break;
       case Role::Kind::Lidar:
@@ -254,7 +252,7 @@ class SystemBuilder {
       case Role::Kind::Terrain: {
         Terrain t;
         t.object = id;
-        t.path = ev_.graph().path(id);
+        t.path = path_of(id);
         t.parent = enclosing;
         read_transform(id, t.local);
         t.num_x = count(id, "num_elements_x");
@@ -396,9 +394,9 @@ class SystemBuilder {
     if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
       body.mass = real(inertia, "mass");
       if (fe::ObjectId tensor = object(inertia, "tensor"); tensor != fe::kNoObject) {
+        const SlotTable<9>::Slots e = tensor_slots_.of(ev_.graph().at(tensor));
         for (int r = 0; r < 3; ++r) {
-          for (int c = 0; c < 3; ++c)
-            body.inertia(r, c) = real(tensor, "e" + std::to_string(r) + std::to_string(c));
+          for (int c = 0; c < 3; ++c) body.inertia(r, c) = in_.real(tensor, e[3 * r + c]);
         }
       }
     }
@@ -416,7 +414,7 @@ class SystemBuilder {
     g.object = id;
     g.visual = is(obj, visual_geometry_);
     g.owner = owner;
-    g.path = ev_.graph().path(id);
+    g.path = path_of(id);
     g.where = where_of(id);
     for (const auto& [model, shape] : shapes_) {
       if (obj.type->is_subtype_of(model)) g.shape = shape;
@@ -465,7 +463,7 @@ class SystemBuilder {
   void add_interaction(fe::ObjectId id) {
     Interaction1D interaction;
     interaction.object = id;
-    interaction.path = ev_.graph().path(id);
+    interaction.path = path_of(id);
     interaction.where = where_of(id);
     for (const auto& [model, kind] : kinds1d_) {
       if (ev_.graph().at(id).type->is_subtype_of(model)) interaction.kind = kind;
@@ -613,20 +611,20 @@ class SystemBuilder {
     Signal signal;
     signal.object = id;
     signal.input = is(obj, input_);
-    signal.path = ev_.graph().path(id);
+    signal.path = path_of(id);
     signal.type = obj.type->qualified;
     // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
     // `source` is the signal it transforms.
-    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : object(id, "source");
-    signal_sources_.push_back(source != fe::kNoObject ? source : object(id, "torque_converter"));
+    const SignalSlots::Slots slots = signal_slots_.of(obj);
+    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : in_.object(id, slots[kSource]);
+    signal_sources_.push_back(source != fe::kNoObject ? source : in_.object(id, slots[kTorqueConverter]));
     signal.where = where_of(id);
-    if (const fe::Value* e = ev_.value(id, "enabled"); e && e->kind == fe::Value::Kind::Bool)
-      signal.enabled = e->bool_value;
+    signal.enabled = in_.boolean(id, slots[kEnabled]).value_or(signal.enabled);
     std::vector<fe::ObjectId> parts;
-    for (const char* list : {"targets", "joint_sources", "object_sources", "sources"}) {
-      if (!obj.has(list)) continue;
+    for (size_t list : {kTargets, kJointSources, kObjectSources, kSources}) {
+      if (!slots[list].present()) continue;
       signal.composite = true;
-      for (fe::ObjectId part : in_.objects(id, list)) parts.push_back(part);
+      for (fe::ObjectId part : in_.objects(id, slots[list])) parts.push_back(part);
     }
     using Composition = Signal::Composition;
     if (is(obj, broadcast_)) signal.composition = Composition::Broadcast;
@@ -637,7 +635,7 @@ class SystemBuilder {
       signal.offset = real(id, "offset", 0.0);
       parts = {object(id, signal.input ? "target" : "source")};
     }
-    if (obj.has("sensors")) signal.sensors = in_.objects(id, "sensors").size();
+    if (slots[kSensors].present()) signal.sensors = in_.objects(id, slots[kSensors]).size();
     if (is(obj, imu_output_)) {
       signal.imu = true;
       // A sensor without an attachment of its own sits where the IMU is attached.
@@ -655,7 +653,7 @@ class SystemBuilder {
                    : is(logic, gyroscope_)    ? Kind::Gyroscope
                    : is(logic, magnetometer_) ? Kind::Magnetometer
                                               : Kind::Unknown;
-          f.sensor_path = ev_.graph().path(sensor);
+          f.sensor_path = path_of(sensor);
           const fe::ObjectId own = object(sensor, "mate_connector_attachment");
           sensor_attachments_.emplace_back(view_.signals.size(), signal.sensor_fields.size(),
                                            own != fe::kNoObject ? own : imu_attachment);
@@ -703,8 +701,9 @@ class SystemBuilder {
     return out;
   }
 
-  // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
+  // IMU fields' and lidars' connectors by index.
   void resolve_sensor_attachments() {
+    if (sensor_attachments_.empty() && view_.lidars.empty()) return;  // no index to build
     std::unordered_map<fe::ObjectId, int> index;
     for (size_t k = 0; k < view_.connectors.size(); ++k)
       index[view_.connectors[k].object] = static_cast<int>(k);
@@ -720,6 +719,9 @@ class SystemBuilder {
 
   // A composite's parts are signals of the tree, found by object.
   void resolve_composites() {
+    if (std::all_of(composite_parts_.begin(), composite_parts_.end(),
+                    [](const std::vector<fe::ObjectId>& parts) { return parts.empty(); }))
+      return;  // no index to build
     std::unordered_map<fe::ObjectId, int> index;
     for (size_t k = 0; k < view_.signals.size(); ++k) index[view_.signals[k].object] = static_cast<int>(k);
     for (size_t k = 0; k < view_.signals.size(); ++k) {
@@ -730,6 +732,7 @@ class SystemBuilder {
     }
   }
 
+  // What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
   void resolve_source(Signal& signal, fe::ObjectId source) {
     if (source == fe::kNoObject) return;
     if (sources_.empty()) build_source_index();
@@ -740,7 +743,7 @@ class SystemBuilder {
       return;
     }
     signal.source_kind = SignalSource::Other;
-    signal.source_path = ev_.graph().path(source);
+    signal.source_path = path_of(source);
   }
   void build_source_index() {
     // Inserted in reverse priority, so an object that were two things would keep the first kind.
@@ -759,6 +762,37 @@ class SystemBuilder {
   }
 
   fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
+
+  // ObjectGraph::path, built on the owner's path when that is kept (a body's signals and connectors share
+  // it).
+  std::string path_of(fe::ObjectId id) {
+    const fe::Object& obj = ev_.graph().at(id);
+    const std::string* owner = obj.owner == fe::kNoObject ? nullptr : rooted_path(obj.owner);
+    return owner ? joined_path(*owner, obj.name) : ev_.graph().path(id);
+  }
+
+  // The path of the root or of an object below it, kept: an owned object keeps its owner and name, so its
+  // path never changes. Null under a free object (a value the evaluator may yet adopt).
+  const std::string* rooted_path(fe::ObjectId id) {
+    if (auto it = rooted_paths_.find(id); it != rooted_paths_.end()) return &it->second;
+    const fe::Object& obj = ev_.graph().at(id);
+    if (obj.owner == fe::kNoObject) {
+      if (id != ev_.graph().root) return nullptr;
+      return &rooted_paths_.emplace(id, ev_.graph().path(id)).first->second;
+    }
+    const std::string* owner = rooted_path(obj.owner);
+    if (!owner) return nullptr;
+    return &rooted_paths_.emplace(id, joined_path(*owner, obj.name)).first->second;
+  }
+
+  // ObjectGraph::path's rule: the owner's path, a dot and the name; no dot after an empty path (the root's).
+  static std::string joined_path(const std::string& owner, const std::string& name) {
+    std::string path;
+    path.reserve(owner.size() + 1 + name.size());
+    if (!owner.empty()) (path += owner) += '.';
+    path += name;
+    return path;
+  }
 
   // ConvexMesh/TriMesh vertices (Math.Vec3 instances) and TriMesh triangle indices.
   void read_mesh_data(fe::ObjectId id, Geometry& g) {
@@ -784,17 +818,12 @@ class SystemBuilder {
   Eigen::Vector3d vec3(fe::ObjectId object, std::string_view name) { return in_.vec3(object, name); }
 
   Transform affine(fe::ObjectId transform) {
+    const auto [position, rotation] = transform_slots_.of(ev_.graph().at(transform));
     Transform t;
-    t.position = vec3(transform, "position");
-    const fe::Value* q = ev_.value(transform, "rotation");
-    if (q && q->kind == fe::Value::Kind::Object) {
-      double c[4] = {0, 0, 0, 1};
-      const char* names[] = {"x", "y", "z", "w"};
-      for (int i = 0; i < 4; ++i) {
-        const fe::Value* v = ev_.value(q->object, names[i]);
-        if (v && v->is_number()) c[i] = v->as_real();
-      }
-      t.rotation = natives::quat_normal(natives::quat_from_xyzw(c[0], c[1], c[2], c[3]));
+    t.position = in_.vec3(transform, position);
+    if (const fe::ObjectId q = in_.object(transform, rotation); q != fe::kNoObject) {
+      const auto [x, y, z, w] = in_.xyzw(q);
+      t.rotation = natives::quat_normal(natives::quat_from_xyzw(x, y, z, w));
     }
     return t;
   }
@@ -807,10 +836,11 @@ class SystemBuilder {
       if (!kinematics || kinematics->kind != fe::Value::Kind::Object) return false;
       holder = kinematics->object;
     }
-    const fe::Value* value = ev_.value(holder, "local_transform");
-    if (!value || value->kind != fe::Value::Kind::Object) return false;
-    out = affine(value->object);
-    return ev_.graph().at(holder).find("local_transform")->explicit_value;
+    const AttributeSlot slot = local_transform_slot_.of(ev_.graph().at(holder))[0];
+    const fe::ObjectId transform = in_.object(holder, slot);
+    if (transform == fe::kNoObject) return false;
+    out = affine(transform);
+    return ev_.graph().at(holder).slots[slot.index].explicit_value;
   }
 
   int add_node(fe::ObjectId id, int parent, bool is_root) {
@@ -819,7 +849,7 @@ class SystemBuilder {
         ev_.graph().at(id).type->is_subtype_of(system_) ? FrameNode::Kind::System : FrameNode::Kind::Body;
     node.object = id;
     node.parent = parent;
-    node.path = ev_.graph().path(id);
+    node.path = path_of(id);
     node.defined = read_transform(id, node.local) || is_root;  // the root frame never moves
     node.where = where_of(id);
     if (node.kind == FrameNode::Kind::Body) read_body(id, node.body);
@@ -843,7 +873,7 @@ class SystemBuilder {
     Connector c;
     c.object = id;
     c.owner = owner;
-    c.path = ev_.graph().path(id);
+    c.path = path_of(id);
     const fe::ModelInfo* type = ev_.graph().at(id).type;
     c.adaptive = (adaptive_ && type->is_subtype_of(adaptive_)) ||
                  (adaptive_trait_ && type->is_subtype_of(adaptive_trait_));
@@ -865,7 +895,7 @@ class SystemBuilder {
     std::optional<Transform> frame = natives::affine_from_axes(main_axis, normal, position);
     if (!frame) {
       sink_.report(fe::DiagCode::InvalidConnector, where,
-                   "mate connector " + ev_.graph().path(id) +
+                   "mate connector " + path_of(id) +
                        " has no frame: main_axis must be non-zero and normal must not be parallel to it");
       return Transform{position, Eigen::Quaterniond::Identity()};
     }
@@ -875,7 +905,7 @@ class SystemBuilder {
   void add_mate(fe::ObjectId id) {
     Mate mate;
     mate.object = id;
-    mate.path = ev_.graph().path(id);
+    mate.path = path_of(id);
     // A URDF joint renamed in OpenPLX (it shares its name with a link) keeps its URDF name in MuJoCo.
     if (const fe::Value* urdf = ev_.value(id, "urdf_name"); urdf && urdf->kind == fe::Value::Kind::String) {
       const size_t dot = mate.path.rfind('.');
@@ -1013,7 +1043,7 @@ class SystemBuilder {
         continue;
       }
       sink_.report(fe::DiagCode::InvalidMate, mate.where,
-                   "connector " + ev_.graph().path(item.object) + " of mate " + mate.path +
+                   "connector " + path_of(item.object) + " of mate " + mate.path +
                        " belongs to no system or body of this model");
     }
   }
@@ -1022,6 +1052,25 @@ class SystemBuilder {
   AttributeReader in_;
   fe::DiagnosticSink& sink_;
   ResolvedSystem view_;
+  // Attributes read on every instance of a model, found once per layout (AttributeReader has Math.Vec3's
+  // and Math.Quat's): a Math.AffineTransform's, a Math.Matrix3x3's, the transform of a system or of a
+  // body's kinematics, and a signal's (an Input's or Output's, composites' and sources' included).
+  SlotTable<2> transform_slots_{{"position", "rotation"}};
+  SlotTable<9> tensor_slots_{{"e00", "e01", "e02", "e10", "e11", "e12", "e20", "e21", "e22"}};
+  SlotTable<1> local_transform_slot_{{"local_transform"}};
+  enum SignalAttribute : size_t {
+    kSource,
+    kTorqueConverter,
+    kEnabled,
+    kTargets,
+    kJointSources,
+    kObjectSources,
+    kSources,
+    kSensors
+  };
+  using SignalSlots = SlotTable<8>;
+  SignalSlots signal_slots_{{"source", "torque_converter", "enabled", "targets", "joint_sources",
+                             "object_sources", "sources", "sensors"}};
   std::vector<fe::ObjectId> geometry_materials_;                      // per geometry: its `material`
   std::vector<std::vector<fe::ObjectId>> composite_parts_;            // per signal: a composite's parts
   std::vector<fe::ObjectId> signal_sources_;                          // per signal: its `source`
@@ -1088,6 +1137,7 @@ class SystemBuilder {
   std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;
+  std::unordered_map<fe::ObjectId, std::string> rooted_paths_;  // see rooted_path
 };
 
 }  // namespace

@@ -14,14 +14,28 @@ bool in_bundle(const fe::ModelInfo* model) {
   return model && model->doc && model->doc->bundle;
 }
 
+// Math values (vectors, quaternions, transforms) are read whole where they matter; an unread one is warned
+// once at the attribute holding it, not per component.
+bool is_math(const fe::Object& obj) {
+  return obj.type && obj.type->qualified.rfind("Math.", 0) == 0;
+}
+
+// A bundle's attribute, assigned in the user's own text (the resolver should have looked at it).
+bool user_assignment_to_bundle(const fe::Slot& slot) {
+  const fe::Entry* entry = slot.binding.entry;
+  return entry && !entry->from_declaration && entry->kind == fe::Entry::Kind::Value &&
+         in_bundle(slot.declared_in()) && !in_bundle(slot.binding.model);
+}
+
 // 1: below `root` and mapped, 0: elsewhere or inside a part already warned as having no counterpart.
 std::vector<signed char> reachable(const fe::ObjectGraph& graph, fe::ObjectId root,
                                    const std::set<fe::ObjectId>& left_out) {
   const size_t count = graph.objects.size();
   std::vector<signed char> state(count, -1);
   state[root] = 1;
+  std::vector<size_t> chain;  // the undecided owners of one object, reused
   for (size_t id = 0; id < count; ++id) {
-    std::vector<size_t> chain;
+    chain.clear();
     size_t at = id;
     while (state[at] < 0) {
       chain.push_back(at);
@@ -46,33 +60,30 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
   std::set<fe::ObjectId> left_out;  // warned whole ("it and its parts were left out")
   for (const Unsupported& u : system.unsupported) left_out.insert(u.object);
   const std::vector<signed char> mapped = reachable(graph, root, left_out);
-  // An assignment is honoured when it was read in any instance it binds: instances that share their
-  // entries are evaluated only as far as something reads them (Evaluator::evaluate_layouts).
+  // One pass over every slot (a large model has hundreds of thousands): the assignments read anywhere, and
+  // the slots that may be warned about, in order. An assignment is honoured when it was read in any instance
+  // it binds: instances that share their entries are evaluated only as far as something reads them
+  // (Evaluator::evaluate_layouts).
   std::unordered_set<const fe::Entry*> read;
-  for (size_t id = 0; id < graph.objects.size(); ++id) {
-    for (const fe::Slot& slot : graph.at(static_cast<fe::ObjectId>(id)).slots) {
-      if (slot.used && slot.binding.entry && !in_bundle(slot.binding.model)) read.insert(slot.binding.entry);
+  std::vector<std::pair<fe::ObjectId, uint32_t>> candidates;
+  for (fe::ObjectId id = 0; id < graph.objects.size(); ++id) {
+    const fe::Object& obj = graph.at(id);
+    const bool checked = mapped[id] == 1 && !is_math(obj);
+    for (uint32_t k = 0; k < obj.slots.size(); ++k) {
+      const fe::Slot& slot = obj.slots[k];
+      if (!slot.binding.entry) continue;
+      if (slot.used && !in_bundle(slot.binding.model)) read.insert(slot.binding.entry);
+      if (checked && user_assignment_to_bundle(slot)) candidates.emplace_back(id, k);
     }
   }
   std::set<const fe::Entry*> warned;  // one warning per assignment, however many instances share it
-  for (size_t id = 0; id < graph.objects.size(); ++id) {
-    if (mapped[id] != 1) continue;
-    const fe::Object& obj = graph.at(static_cast<fe::ObjectId>(id));
-    // Math values (vectors, quaternions, transforms) are read whole where they matter; an unread one is
-    // warned once at the attribute holding it, not per component.
-    if (obj.type && obj.type->qualified.rfind("Math.", 0) == 0) continue;
-    for (uint32_t k = 0; k < obj.slots.size(); ++k) {
-      const fe::Slot& slot = obj.slots[k];
-      const fe::Entry* entry = slot.binding.entry;
-      // A bundle's attribute, assigned in the user's own text, that the resolver never looked at.
-      if (!entry || entry->from_declaration || entry->kind != fe::Entry::Kind::Value) continue;
-      if (!in_bundle(slot.declared_in()) || in_bundle(slot.binding.model)) continue;
-      if (read.count(entry) || !warned.insert(entry).second) continue;
-      sink.report(fe::DiagCode::MjcfUnmapped, entry->member->range,
-                  "`" + graph.path(static_cast<fe::ObjectId>(id)) + (id == root ? "" : ".") +
-                      std::string(slot.name()) + "` (" + slot.declared_in()->qualified +
-                      ") has no MuJoCo counterpart here; it was ignored");
-    }
+  for (const auto& [id, k] : candidates) {
+    const fe::Slot& slot = graph.at(id).slots[k];
+    const fe::Entry* entry = slot.binding.entry;
+    if (read.count(entry) || !warned.insert(entry).second) continue;
+    sink.report(fe::DiagCode::MjcfUnmapped, entry->member->range,
+                "`" + graph.path(id) + (id == root ? "" : ".") + std::string(slot.name()) + "` (" +
+                    slot.declared_in()->qualified + ") has no MuJoCo counterpart here; it was ignored");
   }
 }
 

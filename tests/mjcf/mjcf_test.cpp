@@ -5,6 +5,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "mjcf_emitter/check.h"
+#include "mjcf_emitter/xml.h"
 #include "snap/resolve_system.h"
 #include "tests/support/mjcf_fixture.h"
 #include "tests/support/scratch_dir.h"
@@ -751,6 +753,30 @@ TEST_F(Mjcf, InlineTexturesAreWarned) {
   emit("texture");
   expect_diag_containing(fe::DiagCode::MjcfUnmapped, ".base_color_map` is an inline texture");
   accept_all_diags();
+}
+
+// Numbers are the shortest text that reads back the same (zero as "0"), whole ones included: those below
+// 10^4 take a shortcut that must print what the general conversion prints.
+TEST(MjcfText, NumbersAreShortestRoundTrip) {
+  auto shortest = [](double v) {
+    char buffer[64];
+    return std::string(buffer, std::to_chars(buffer, buffer + sizeof(buffer), v).ptr);
+  };
+  for (double v : {1.0,      -1.0, 7.0, 42.0,  999.0, -1000.0, 9999.0, -9999.0,   10000.0,   -10000.0,
+                   100000.0, 1e15, 0.5, -0.25, 1e-7,  0.1,     9999.5, 1234.5678, 1.0 / 3.0, 6.02e23}) {
+    EXPECT_EQ(mj::number(v), shortest(v)) << v;
+  }
+  EXPECT_EQ(mj::number(0.0), "0");
+  EXPECT_EQ(mj::number(-0.0), "0");
+  EXPECT_EQ(mj::numbers({0.0, 1.5, -2.0, 100000.0}), "0 1.5 -2 1e+05");
+  EXPECT_EQ(mj::numbers({}), "");
+}
+
+// Attribute values are escaped where XML needs it, and only there.
+TEST(MjcfText, AttributesAreEscaped) {
+  mj::Element e("site");
+  e.set("name", "a&b<c>\"d\"").set("plain", "x.y_z");
+  EXPECT_EQ(e.to_string(), "<site name=\"a&amp;b&lt;c&gt;&quot;d&quot;\" plain=\"x.y_z\"/>\n");
 }
 
 }  // namespace

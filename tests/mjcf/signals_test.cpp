@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 
+#include "frontend/quoted.h"
 #include "mjcf_emitter/signal_binding.h"
 #include "tests/support/mjcf_fixture.h"
 
@@ -294,6 +295,27 @@ TEST(SignalKind, UnitsAndValueKindsFollowTheModelName) {
   EXPECT_EQ(mj::signal_kind("Physics3D.Signals.LinearVelocity3DOutput").unit, "m/s");
   EXPECT_EQ(mj::signal_kind("Physics.Signals.EnableInteractionInput").value, mj::SignalValue::Bool);
   EXPECT_EQ(mj::signal_stem("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"), "AngularVelocity3D");
+}
+
+// The manifest's strings are quoted as frontend::quoted writes them (escapes included), its numbers are the
+// shortest round trip, and numbers JSON cannot hold are strings.
+TEST(Manifest, StringsAreEscapedAndNumbersShortest) {
+  mj::SignalBinding b;
+  b.path = "odd\"name\\with\nbreaks\tand\rreturns";
+  b.type = "Physics.Signals.AngleOutput";
+  b.reason = "plain";
+  b.sign = -1;
+  b.initial = 0.1;
+  b.initial_vector = {100000, -0.0, 1.5};
+  b.low = -INFINITY;
+  b.high = NAN;
+  const std::string json = mj::manifest_json("model", "p/", {b}, {});
+  EXPECT_NE(json.find("{\"path\": " + fe::quoted(b.path) + ", \"direction\": \"output\""), std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"sign\": -1, \"initial\": 0.1, \"initial_vector\": [1e+05, 0, 1.5], \"low\": "
+                      "\"-inf\", \"high\": \"nan\", \"reason\": \"plain\""),
+            std::string::npos)
+      << json;
 }
 
 }  // namespace
