@@ -52,7 +52,8 @@ Emitted Lowering::run() {
   for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
     drop_empty(root, section);
   out.laws = laws_;
-  out.manifest_json = manifest_json(options_.model_name, options_.prefix, out.signals, out.laws);
+  if (options_.manifest_text)
+    out.manifest_json = manifest_json(options_.model_name, options_.prefix, out.signals, out.laws);
   stiffen_equalities(root);
   finish_with_draft(root);
   return out;

@@ -31,13 +31,16 @@ struct EmitOptions {
   // model, so a file <include>d into a bigger scene goes without (--no-keyframe); a SignalBridge sets the
   // initial controls instead.
   bool keyframe = true;
+  // Emitted::manifest_json filled in; the converter leaves it empty and writes the manifest to its file in
+  // pieces from `signals` and `laws` (write_manifest_json), never holding the whole text.
+  bool manifest_text = true;
 };
 
 struct Emitted {
   Element document{"mujoco"};
   std::vector<SignalBinding> signals;  // every OpenPLX input/output and how MuJoCo reaches it
   std::vector<RuntimeLaw> laws;        // what the runtime computes each step (engines, torque converters)
-  std::string manifest_json;           // the same, as the signal manifest file
+  std::string manifest_json;           // the same, as the signal manifest file (EmitOptions::manifest_text)
 };
 
 // MuJoCo 2.2.2's XML reader stops near 100 nested elements; deeper body chains are an error here.

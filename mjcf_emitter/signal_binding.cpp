@@ -291,9 +291,25 @@ void append_string(std::string& out, std::string_view text) {
 
 std::string manifest_json(std::string_view model_name, std::string_view prefix,
                           const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws) {
-  // Appended in place: a large model has tens of thousands of signals.
+  std::string whole;
+  whole.reserve(64 + 400 * bindings.size());  // a little over what one binding takes: one allocation
+  write_manifest_json(model_name, prefix, bindings, laws, [&whole](std::string_view part) { whole += part; });
+  return whole;
+}
+
+void write_manifest_json(std::string_view model_name, std::string_view prefix,
+                         const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
+                         const std::function<void(std::string_view)>& write) {
+  // Appended in place (a large model has tens of thousands of signals) and handed on in pieces, so a file
+  // written from it never holds the whole text in memory.
+  constexpr size_t kPiece = 64 << 10;
   std::string out;
-  out.reserve(64 + 400 * bindings.size());  // a little over what one binding takes: one allocation
+  out.reserve(kPiece + 4096);
+  auto hand_on = [&](size_t at_least) {
+    if (out.size() < at_least) return;
+    write(out);
+    out.clear();
+  };
   out += "{\n  \"model\": "sv;
   append_string(out, model_name);
   out += ",\n  \"prefix\": "sv;
@@ -331,6 +347,7 @@ std::string manifest_json(std::string_view model_name, std::string_view prefix,
     append_string(out, b.reason);
     (out += ", \"runtime\": "sv) += b.runtime ? "true"sv : "false"sv;
     out += '}';
+    hand_on(kPiece);
   }
   out += "\n  ],\n  \"laws\": ["sv;
   first = true;
@@ -353,9 +370,10 @@ std::string manifest_json(std::string_view model_name, std::string_view prefix,
     out += ", \"parameter\": "sv;
     append_json_number(out, law.parameter);
     out += '}';
+    hand_on(kPiece);
   }
   out += "\n  ]\n}\n"sv;
-  return out;
+  hand_on(0);
 }
 
 }  // namespace openplx::mjcf

@@ -6,6 +6,7 @@
 // element by name (prefix included); the runtime resolves names to ids with mj_name2id once, at load.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -177,5 +178,9 @@ std::string_view to_string(Quantity quantity);
 // are the strings "inf", "-inf", "nan". `prefix` is the one every MuJoCo name carries.
 std::string manifest_json(std::string_view model_name, std::string_view prefix,
                           const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws);
+// The same text handed to `write` in pieces of about 64 KiB (a 10,000-body model's manifest is 40 MB).
+void write_manifest_json(std::string_view model_name, std::string_view prefix,
+                         const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
+                         const std::function<void(std::string_view)>& write);
 
 }  // namespace openplx::mjcf

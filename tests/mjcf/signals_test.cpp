@@ -318,4 +318,29 @@ TEST(Manifest, StringsAreEscapedAndNumbersShortest) {
       << json;
 }
 
+// The converter writes the manifest in pieces: they join into exactly the text manifest_json gives, and a
+// large manifest (here about 2 MB) comes in many pieces, none much over 64 KiB.
+TEST(Manifest, PiecesJoinIntoTheWholeText) {
+  std::vector<mj::SignalBinding> bindings(8000);
+  for (size_t i = 0; i < bindings.size(); ++i) {
+    bindings[i].path = "body" + std::to_string(i) + ".position_output";
+    bindings[i].type = "Physics3D.Signals.Position3DOutput";
+    bindings[i].names = {"body" + std::to_string(i)};
+  }
+  mj::RuntimeLaw law;
+  law.path = "engine";
+  law.curve_x = {0, 1};
+  std::string joined;
+  size_t pieces = 0;
+  size_t largest = 0;
+  mj::write_manifest_json("model", "p/", bindings, {law}, [&](std::string_view piece) {
+    joined += piece;
+    ++pieces;
+    largest = std::max(largest, piece.size());
+  });
+  EXPECT_EQ(joined, mj::manifest_json("model", "p/", bindings, {law}));
+  EXPECT_GT(pieces, joined.size() / (128u << 10));
+  EXPECT_LT(largest, (64u << 10) + 4096);
+}
+
 }  // namespace

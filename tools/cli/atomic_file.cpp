@@ -12,6 +12,12 @@
 namespace openplx::cli {
 
 bool write_file_atomically(const std::string& path, std::string_view content, std::string& error) {
+  return write_file_atomically(
+      path, [content](const PieceWriter& write) { write(content); }, error);
+}
+
+bool write_file_atomically(const std::string& path, const std::function<void(const PieceWriter&)>& produce,
+                           std::string& error) {
   std::string pattern = path + ".tmpXXXXXX";
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
@@ -20,17 +26,24 @@ bool write_file_atomically(const std::string& path, std::string_view content, st
     error = std::string("cannot create a temporary file beside it: ") + std::strerror(errno);
     return false;
   }
-  size_t written = 0;
-  while (written < content.size()) {
-    ssize_t n = ::write(fd, content.data() + written, content.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      error = std::string("cannot write: ") + std::strerror(errno);
-      ::close(fd);
-      std::remove(name.data());
-      return false;
+  int failure = 0;  // the first write's errno; later pieces are skipped
+  produce([&](std::string_view piece) {
+    size_t written = 0;
+    while (!failure && written < piece.size()) {
+      ssize_t n = ::write(fd, piece.data() + written, piece.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        failure = n < 0 ? errno : EIO;
+        break;
+      }
+      written += static_cast<size_t>(n);
     }
-    written += static_cast<size_t>(n);
+  });
+  if (failure) {
+    error = std::string("cannot write: ") + std::strerror(failure);
+    ::close(fd);
+    std::remove(name.data());
+    return false;
   }
   // mkstemp creates 0600; an output file should get the usual permissions.
   ::fchmod(fd, 0644);

@@ -2,11 +2,16 @@
 // renamed over it, so a reader never sees a partial file and a failed run leaves the old file in place.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 
 namespace openplx::cli {
 
 bool write_file_atomically(const std::string& path, std::string_view content, std::string& error);
+// The same for text made in pieces: `produce` hands each piece to the writer it is given, in order.
+using PieceWriter = std::function<void(std::string_view)>;
+bool write_file_atomically(const std::string& path, const std::function<void(const PieceWriter&)>& produce,
+                           std::string& error);
 
 }  // namespace openplx::cli

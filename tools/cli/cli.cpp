@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -128,8 +129,26 @@ class PassTimer {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// What a conversion with -o writes: the MJCF, and what the signal manifest beside it is written from.
+struct Converted {
+  std::string xml;
+  std::string model_name;
+  std::string prefix;
+  std::optional<mjcf::Emitted> emitted;  // its signals and laws
+};
+
+bool write_manifest(const Converted& converted, const std::string& path, std::string& error) {
+  return write_file_atomically(
+      path,
+      [&](const PieceWriter& write) {
+        mjcf::write_manifest_json(converted.model_name, converted.prefix, converted.emitted->signals,
+                                  converted.emitted->laws, write);
+      },
+      error);
+}
+
 bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
-              std::ostream& text, std::string& manifest, std::ostream& err) {
+              std::ostream& text, Converted& converted, std::ostream& err) {
   PassTimer timer;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.input, ec)) {
@@ -169,6 +188,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.prefix = options.prefix;
   emit_options.timestep = options.timestep;
   emit_options.keyframe = options.keyframe;
+  emit_options.manifest_text = false;  // written to its file in pieces (write_manifest)
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
@@ -178,9 +198,11 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   const std::string xml = emitted.document.to_string();
   timer.lap("print xml");
   if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
-  if (options.output) text << xml;  // without -o the model is only checked
-  manifest = std::move(emitted.manifest_json);
-  leave_to_exit(std::move(emitted));
+  if (!options.output) return true;  // without -o the model is only checked
+  converted.xml = std::move(xml);
+  converted.model_name = emit_options.model_name;
+  converted.prefix = emit_options.prefix;
+  converted.emitted = std::move(emitted);
   leave_to_exit(std::move(view));
   leave_to_exit(std::move(evaluation));
   return true;
@@ -374,7 +396,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   fe::SourceManager sources;
   fe::DiagnosticSink sink(options->strict);
   std::ostringstream text;
-  std::string manifest;  // the signal manifest, written beside an MJCF output file
+  Converted converted;
   if (options->dump == DumpKind::Tokens || options->dump == DumpKind::Ast) {
     std::string io_error;
     std::optional<fe::FileId> file_id = sources.load(options->input, io_error);
@@ -389,7 +411,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     } else {
       fe::dump_ast(text, file, fe::parse_file(sources, *file_id, sink));
     }
-  } else if (!evaluate(*options, sources, sink, text, manifest, err)) {
+  } else if (!evaluate(*options, sources, sink, text, converted, err)) {
     return kExitInputError;
   }
 
@@ -397,17 +419,18 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   const bool failed = sink.has_errors();
   const bool to_stdout = !options->output || *options->output == "-";
   if (to_stdout) {
-    out << text.str();  // a dump of a broken file still helps; its diagnostics are on stderr
+    out << text.str() << converted.xml;  // a dump of a broken file still helps; its diagnostics are on stderr
   } else if (!failed) {
+    const std::string dump = text.str();
     std::string write_error;
-    if (!write_file_atomically(*options->output, text.str(), write_error) ||
-        (!manifest.empty() &&
-         !write_file_atomically(manifest_path(*options->output), manifest, write_error))) {
+    if (!write_file_atomically(*options->output, converted.xml.empty() ? dump : converted.xml, write_error) ||
+        (converted.emitted && !write_manifest(converted, manifest_path(*options->output), write_error))) {
       err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
           << "]\n";
       return kExitInputError;
     }
   }
+  leave_to_exit(std::move(converted));
   return failed ? kExitInputError : kExitOk;
 }
 
