@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mjcf_emitter/mujoco_library.h"
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::mjcf {
@@ -12,20 +13,22 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
                        const snap::SnapResult& snap, const std::string& prefix, const std::string& root_name,
                        double tolerance) {
   CheckResult result;
+  const MuJoCoLibrary* mj = mujoco_library(result.load_error);
+  if (!mj) return result;
   char error[1000] = "";
-  mjModel* model = mj_loadXML(xml_path.c_str(), nullptr, error, sizeof(error));
+  mjModel* model = mj->loadXML(xml_path.c_str(), nullptr, error, sizeof(error));
   if (!model) {
     result.load_error = error;
     return result;
   }
   result.loaded = true;
-  mjData* data = mj_makeData(model);
-  mj_forward(model, data);
+  mjData* data = mj->makeData(model);
+  mj->forward(model, data);
   for (size_t n = 0; n < view.nodes.size(); ++n) {
     const snap::FrameNode& node = view.nodes[n];
     if (node.kind != snap::FrameNode::Kind::Body) continue;
     const std::string name = prefix + (node.path.empty() ? root_name : node.path);
-    const int id = mj_name2id(model, mjOBJ_BODY, name.c_str());
+    const int id = mj->name2id(model, mjOBJ_BODY, name.c_str());
     if (id < 0) {
       result.problems.push_back("body " + name + " is missing from the MJCF");
       continue;
@@ -49,13 +52,13 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
     result.max_equality_residual = std::max(result.max_equality_residual, r);
     if (r > std::max(tolerance, 1e-7)) {
       const int eq = data->efc_id[i];
-      const char* eq_name = mj_id2name(model, mjOBJ_EQUALITY, eq);
+      const char* eq_name = mj->id2name(model, mjOBJ_EQUALITY, eq);
       result.problems.push_back(std::string("equality ") + (eq_name ? eq_name : std::to_string(eq)) +
                                 " starts violated by " + number(r));
     }
   }
-  mj_deleteData(data);
-  mj_deleteModel(model);
+  mj->deleteData(data);
+  mj->deleteModel(model);
   return result;
 }
 

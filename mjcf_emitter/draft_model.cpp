@@ -20,23 +20,25 @@ DraftModel::DraftModel(const Element& document, const std::string& dir) {
   // 2.2.2 takes mesh volumes from the meshes only with this flag (otherwise from an equivalent box).
   if (const size_t at = text.find("<compiler "); at != std::string::npos)
     text.insert(at + 10, "exactmeshinertia=\"true\" ");
+  mj_ = mujoco_library(error_);
+  if (!mj_) return;
   std::ofstream(file) << text;
   char error[1000] = "";
-  m_ = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+  m_ = mj_->loadXML(file.c_str(), nullptr, error, sizeof(error));
   std::error_code ec;
   fs::remove(file, ec);
   if (!m_) error_ = error;
 }
 
 DraftModel::~DraftModel() {
-  if (m_) mj_deleteModel(m_);
+  if (m_) mj_->deleteModel(m_);
 }
 
 void DraftModel::write_inertials(const std::vector<Element*>& bodies) const {
   if (!m_) return;
   for (Element* body : bodies) {
     const std::string* name = body->get("name");
-    const int id = name ? mj_name2id(m_, mjOBJ_BODY, name->c_str()) : -1;
+    const int id = name ? mj_->name2id(m_, mjOBJ_BODY, name->c_str()) : -1;
     if (id <= 0) continue;
     const mjtNum* pos = m_->body_ipos + 3 * id;
     const mjtNum* quat = m_->body_iquat + 4 * id;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mjcf_emitter/mujoco_library.h"
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::mjcf {
@@ -29,6 +30,7 @@ class DraftModel {
   void write_inertials(const std::vector<Element*>& bodies) const;
 
  private:
+  const MuJoCoLibrary* mj_ = nullptr;  // loaded by the first draft
   mjModel* m_ = nullptr;
   std::string error_;
 };

@@ -1,5 +1,7 @@
 #include "mjcf_emitter/soft_constraints.h"
 
+#include "mjcf_emitter/mujoco_library.h"
+
 #include <cmath>
 
 namespace openplx::mjcf {
@@ -34,11 +36,14 @@ bool simple_in_mujoco3(const mjModel* m, int b) {
 SoftEqualityResult apply_soft_equalities(const mjModel* m, const std::vector<PendingSoftEquality>& pending,
                                          double timestep, bool mujoco3) {
   SoftEqualityResult result;
+  std::string error;
+  const MuJoCoLibrary* mj = mujoco_library(error);  // loaded already: `m` came from it
+  if (!mj) return result;
   const double d = kSoftImpedance;
   for (const PendingSoftEquality& p : pending) {
     double dA = 0, dA_rot = 0;
     for (const std::string& body : {p.body1, p.body2}) {
-      const int id = body == "world" ? 0 : mj_name2id(m, mjOBJ_BODY, body.c_str());
+      const int id = body == "world" ? 0 : mj->name2id(m, mjOBJ_BODY, body.c_str());
       if (id <= 0) continue;
       dA += mujoco3 && simple_in_mujoco3(m, id) ? 1 / m->body_mass[id] : m->body_invweight0[2 * id];
       dA_rot += m->body_invweight0[2 * id + 1];
