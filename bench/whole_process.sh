@@ -74,8 +74,9 @@ measure() {
   local label=$1 model=$2
   local xml=$work/$(basename "${model%.*}").xml
   "$converter" "$model" -o "$xml" 2>/dev/null
+  # Both write fresh files (mujoco-compile would ask before overwriting; replacing a file makes ext4 flush it).
   hyperfine -N --style none --warmup 2 --runs "$runs" --export-json "$work/h.json" \
-    --prepare "rm -f $work/out.mjb" \
+    --prepare "rm -f $work/out.mjb $work/out.xml $work/out.signals.json" \
     "$converter $model -o $work/out.xml" "mujoco-compile $xml $work/out.mjb" >/dev/null 2>&1
   local ours theirs
   ours=$(sed -n 's/.*"median": *\([0-9.e-]*\).*/\1/p' "$work/h.json" | sed -n 1p)
