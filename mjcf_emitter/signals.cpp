@@ -238,6 +238,10 @@ SignalBinding Lowering::bind_enabled(SignalBinding b, int k) {
     b.high = i.end;
     return b;
   }
+  if (auto t = distance_tendons_.find(k); t != distance_tendons_.end()) {
+    return unmapped(std::move(b), "`" + i.path + "` is the length limit of MuJoCo tendon " + t->second +
+                                      ", which the runtime does not switch on and off");
+  }
   return unmapped(std::move(b), "`" + i.path + "` was not emitted");
 }
 

@@ -117,6 +117,18 @@ TEST(ArticulatedSteering, ActuatorsTurnTheHingeByTheirLengthsAndStopAtTheStroke)
     EXPECT_NE(w.find((dir / "loader.openplx").string() + ":30:"), std::string::npos) << w;
     EXPECT_NE(w.find("velocity servo"), std::string::npos) << w;
   }
+  // The strokes' ranges are tendon limits, which the runtime cannot switch: their enable inputs say so.
+  int range_switches = 0;
+  for (const rt::SignalInfo& in : sim.inputs()) {
+    if (in.type != "Physics.Signals.EnableInteractionInput" ||
+        in.name.find("connection") == std::string::npos)
+      continue;
+    ++range_switches;
+    EXPECT_FALSE(in.mapped) << in.name;
+    EXPECT_NE(in.mujoco.find("length limit of MuJoCo tendon"), std::string::npos)
+        << in.name << ": " << in.mujoco;
+  }
+  EXPECT_EQ(range_switches, 2);
   State s = state(sim);
   EXPECT_NEAR(s.lengths[0], 1.0, 1e-9);
   EXPECT_NEAR(s.yaw, 0.0, 1e-12);
