@@ -604,7 +604,8 @@ void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
 }
 
 bool Evaluator::reached_by_entries(ObjectId id) const {
-  std::vector<ObjectId> chain;
+  std::vector<ObjectId>& chain = reach_chain_;  // reused: asked once per adopted value
+  chain.clear();
   for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
   std::reverse(chain.begin(), chain.end());
   bool reached = false;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "frontend/entry_reach.h"
+#include "frontend/function_ref.h"
 #include "frontend/object_graph.h"
 #include "frontend/program.h"
 
@@ -194,7 +195,7 @@ class Evaluator {
   const MethodInfo* find_method(ModelInfo* model, std::string_view name, ModelInfo** owner);
 
   // Checks and converts `v` for a slot or parameter of type `target`; reports at `where`.
-  using Describe = std::function<std::string()>;
+  using Describe = FunctionRef<std::string()>;  // valid only during the call it is passed to
   Value convert(Value v, const Type& target, SourceRange where, const Describe& what);
   bool assignable(const Value& v, const Type& target) const;
   static bool is_path_expression(const Document& doc, ExprId expr);
@@ -224,9 +225,10 @@ class Evaluator {
   void copy_layout(ObjectId id, const Layout& layout, const std::vector<ObjectId>& chain, uint32_t own_level);
   std::unordered_map<std::string, Layout> layouts_;
   uint32_t next_layout_ = 1;
-  mutable EntryReach entry_reach_;   // built per type on first use
-  std::vector<ObjectId> chain_;      // build_slots' ancestor chain
-  std::deque<Type> narrowed_types_;  // types `becomes` gave slots (slots point at them)
+  mutable EntryReach entry_reach_;             // built per type on first use
+  std::vector<ObjectId> chain_;                // build_slots' ancestor chain
+  mutable std::vector<ObjectId> reach_chain_;  // reached_by_entries' ancestor chain
+  std::deque<Type> narrowed_types_;            // types `becomes` gave slots (slots point at them)
 };
 
 // The root model of a loaded file: `name` if given, else the last model declared. Reports
