@@ -1,6 +1,7 @@
 #include "frontend/evaluator.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <unordered_set>
 
@@ -322,21 +323,27 @@ void Evaluator::build_slots(ObjectId id) {
   // the first is built in full, the others copy it and rebind `this` to their own ancestors.
   // An enclosing model that only assigns values to the instance's attributes (`hinge: connectors: [...]`,
   // one per instance) leaves the layout alone: its entries are laid over a copy (overlay_assignments).
-  std::string key(reinterpret_cast<const char*>(&graph_.at(id).type), sizeof(ModelInfo*));
-  std::string full_key = key;
-  std::vector<std::pair<uint32_t, std::string>> overlays;  // level, path from it to the instance
+  // Keys are bytes: each reaching ancestor's type, distance and node (a node stands for one path below one
+  // type). Built in reused buffers: most instances only look their layout up.
+  std::string& key = layout_key_;
+  std::string& full_key = full_layout_key_;
+  std::vector<Overlay>& overlays = overlays_;
+  key.assign(reinterpret_cast<const char*>(&graph_.at(id).type), sizeof(ModelInfo*));
+  full_key = key;
+  overlays.clear();
   for_each_reaching(chain, [&](uint32_t i, const EntryReach::Node& node) {
     const ModelInfo* type = graph_.at(chain[i]).type;
     const uint32_t distance = own_level - i;
-    std::string part(reinterpret_cast<const char*>(&type), sizeof(type));
-    part.append(reinterpret_cast<const char*>(&distance), sizeof(distance));
-    part += node.rel;
-    part += '\0';
-    full_key += part;
+    const EntryReach::Node* at = &node;
+    char part[sizeof(type) + sizeof(distance) + sizeof(at)];
+    std::memcpy(part, &type, sizeof(type));
+    std::memcpy(part + sizeof(type), &distance, sizeof(distance));
+    std::memcpy(part + sizeof(type) + sizeof(distance), &at, sizeof(at));
+    full_key.append(part, sizeof(part));
     if (assigns_only(type, node)) {
-      overlays.emplace_back(i, node.rel);
+      overlays.emplace_back(i, at);
     } else {
-      key += part;
+      key.append(part, sizeof(part));
     }
     return false;
   });
@@ -345,7 +352,7 @@ void Evaluator::build_slots(ObjectId id) {
     return;
   }
   ModelInfo* const type = graph_.at(id).type;
-  if (overlays.empty() || !use_layout(id, std::move(key), chain, own_level, overlays) ||
+  if (overlays.empty() || !use_layout(id, key, chain, own_level, overlays) ||
       !overlay_assignments(id, chain, overlays)) {
     graph_.at(id).type = type;
     use_layout(id, full_key, chain, own_level, {});
@@ -353,7 +360,7 @@ void Evaluator::build_slots(ObjectId id) {
   }
   // The others with the same entries copy the result.
   const Object& built = graph_.at(id);
-  Layout& layout = layouts_[std::move(full_key)];
+  Layout& layout = layouts_[full_key];
   layout = {built.type, own_level, built.slots, built.index, built.infos, next_layout_++};
   graph_.at(id).layout = layout.id;
 }
@@ -374,17 +381,16 @@ void Evaluator::copy_layout(ObjectId id, const Layout& l, const std::vector<Obje
   obj.layout = l.id;
 }
 
-bool Evaluator::use_layout(ObjectId id, std::string key, const std::vector<ObjectId>& chain,
-                           uint32_t own_level,
-                           const std::vector<std::pair<uint32_t, std::string>>& left_out) {
-  auto [layout, fresh] = layouts_.try_emplace(std::move(key));
+bool Evaluator::use_layout(ObjectId id, const std::string& key, const std::vector<ObjectId>& chain,
+                           uint32_t own_level, const std::vector<Overlay>& left_out) {
+  auto [layout, fresh] = layouts_.try_emplace(key);
   if (!fresh) {
     copy_layout(id, layout->second, chain, own_level);
     return true;
   }
   graph_.at(id).slots.clear();
   std::vector<Level> levels = levels_of(id);
-  for (const auto& [level, rel] : left_out) levels[level].left_out = true;
+  for (const auto& [level, node] : left_out) levels[level].left_out = true;
   build_slots_from(id, levels);
   Object& built = graph_.at(id);
   layout->second = {built.type, own_level, built.slots, built.index, built.infos, next_layout_++};
@@ -393,13 +399,13 @@ bool Evaluator::use_layout(ObjectId id, std::string key, const std::vector<Objec
 }
 
 bool Evaluator::overlay_assignments(ObjectId id, const std::vector<ObjectId>& chain,
-                                    const std::vector<std::pair<uint32_t, std::string>>& overlays) {
+                                    const std::vector<Overlay>& overlays) {
   // Entries aimed at attributes the layout lacks (unknown or 0.17.8 names) take the full path, which
   // reports them.
   Object& obj = graph_.at(id);
-  for (const auto& [level, rel] : overlays) {
+  for (const auto& [level, node] : overlays) {
     for (const ModelInfo* model : graph_.at(chain[level]).type->linearization) {
-      auto it = model->by_parent.find(rel);
+      auto it = model->by_parent.find(node->rel);
       if (it == model->by_parent.end()) continue;
       for (uint32_t index : it->second) {
         if (!obj.has(model->entries[index].path.back())) return false;
@@ -409,9 +415,9 @@ bool Evaluator::overlay_assignments(ObjectId id, const std::vector<ObjectId>& ch
   // Priority as in collect_targeting and pick_value: the level nearest the root, then the most derived
   // model; an assignment beats a declaration's default.
   std::vector<bool> overlaid(obj.slots.size(), false);
-  for (const auto& [level, rel] : overlays) {
+  for (const auto& [level, node] : overlays) {
     for (ModelInfo* model : graph_.at(chain[level]).type->linearization) {
-      auto it = model->by_parent.find(rel);
+      auto it = model->by_parent.find(node->rel);
       if (it == model->by_parent.end()) continue;
       for (uint32_t index : it->second) {
         const Entry& e = model->entries[index];

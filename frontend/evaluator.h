@@ -131,12 +131,14 @@ class Evaluator {
   // annotations or entries on parts): such entries bind an instance without changing its layout.
   bool assigns_only(const ModelInfo* type, const std::string& rel) const;
   // Gives `id` the slots of the layout `key`, built now (without the entries of `left_out` levels) if new.
-  bool use_layout(ObjectId id, std::string key, const std::vector<ObjectId>& chain, uint32_t own_level,
-                  const std::vector<std::pair<uint32_t, std::string>>& left_out);
+  // An enclosing level whose entries only assign the instance's attributes, and where they aim.
+  using Overlay = std::pair<uint32_t, const EntryReach::Node*>;
+  bool use_layout(ObjectId id, const std::string& key, const std::vector<ObjectId>& chain, uint32_t own_level,
+                  const std::vector<Overlay>& left_out);
   // Binds `id`'s attributes to the assignments of the `overlays` levels; false (nothing changed) when one
   // is aimed at an attribute the layout lacks.
   bool overlay_assignments(ObjectId id, const std::vector<ObjectId>& chain,
-                           const std::vector<std::pair<uint32_t, std::string>>& overlays);
+                           const std::vector<Overlay>& overlays);
   void build_slots_from(ObjectId id, const std::vector<Level>& levels);
   // Calls visit(level, node) for each ancestor in `chain` (root first, the instance last) whose type's
   // entries aim at the instance or its parts, nearest the root first, until visit returns true.
@@ -228,6 +230,8 @@ class Evaluator {
   mutable EntryReach entry_reach_;             // built per type on first use
   std::vector<ObjectId> chain_;                // build_slots' ancestor chain
   mutable std::vector<ObjectId> reach_chain_;  // reached_by_entries' ancestor chain
+  std::string layout_key_, full_layout_key_;   // build_slots' keys, reused
+  std::vector<Overlay> overlays_;              // build_slots' overlays, reused
   std::deque<Type> narrowed_types_;            // types `becomes` gave slots (slots point at them)
 };
 
