@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -162,7 +163,9 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
     // A model written out by hand or by a script (boxes, trees) needs a few hundred bytes of heap per byte of
     // text; a small one does not pay for the reservation.
     const uintmax_t size = std::filesystem::file_size(options.input, ec);
-    if (!ec && size >= kHugePageInputBytes) reserve_huge_page_heap(size * 512);
+    // Capped: only touched pages cost memory, but a reservation need not outgrow any machine.
+    if (!ec && size >= kHugePageInputBytes)
+      reserve_huge_page_heap(std::min<uintmax_t>(size * 512, 2ull << 30));
   }
   fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
   request.default_bundles = options.default_bundles;
