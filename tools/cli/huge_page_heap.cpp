@@ -11,6 +11,10 @@
 namespace openplx::cli {
 
 void reserve_huge_page_heap(size_t bytes) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer's allocator owns the heap: the blocks would only sit in its quarantine.
+  (void)bytes;
+#else
   constexpr uintptr_t kHugePage = 2u << 20;
   constexpr size_t kBlock = 16 << 20;  // below glibc's largest mmap threshold (32 MiB)
   // Blocks up to that size come from the heap (an mmap'd block would get small pages); never trimmed.
@@ -26,6 +30,7 @@ void reserve_huge_page_heap(size_t bytes) {
   const uintptr_t last = end & ~(kHugePage - 1);
   // Without THP (kernel setting "never") this fails harmlessly and the heap keeps small pages.
   if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#endif
 }
 
 }  // namespace openplx::cli
