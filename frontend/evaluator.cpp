@@ -311,11 +311,15 @@ bool Evaluator::assigns_only(const ModelInfo* type, const std::string& rel) cons
   return true;
 }
 
-void Evaluator::build_slots(ObjectId id) {
-  std::vector<ObjectId>& chain = chain_;  // root first; reused, building slots creates no objects
+void Evaluator::owner_chain(ObjectId id, std::vector<ObjectId>& chain) const {
   chain.clear();
   for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
   std::reverse(chain.begin(), chain.end());
+}
+
+void Evaluator::build_slots(ObjectId id) {
+  std::vector<ObjectId>& chain = chain_;  // reused, building slots creates no objects
+  owner_chain(id, chain);
   const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
   // An instance's layout (its slots, their types and the entries that bind them) is decided by its type and
   // by the enclosing models whose entries reach it, each at its distance and relative path. Instances
@@ -611,9 +615,7 @@ void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
 
 bool Evaluator::reached_by_entries(ObjectId id) const {
   std::vector<ObjectId>& chain = reach_chain_;  // reused: asked once per adopted value
-  chain.clear();
-  for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner) chain.push_back(cur);
-  std::reverse(chain.begin(), chain.end());
+  owner_chain(id, chain);
   bool reached = false;
   for_each_reaching(chain, [&](uint32_t, const EntryReach::Node&) { return reached = true; });
   return reached;

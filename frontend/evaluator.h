@@ -142,6 +142,8 @@ class Evaluator {
   void build_slots_from(ObjectId id, const std::vector<Level>& levels);
   // Calls visit(level, node) for each ancestor in `chain` (root first, the instance last) whose type's
   // entries aim at the instance or its parts, nearest the root first, until visit returns true.
+  // `id` and its owners, root first.
+  void owner_chain(ObjectId id, std::vector<ObjectId>& chain) const;
   template <typename Visit>
   void for_each_reaching(const std::vector<ObjectId>& chain, Visit&& visit) const;
   bool assigns_only(const ModelInfo* type, const EntryReach::Node& node) const;

@@ -38,7 +38,7 @@ void DraftModel::write_inertials(const std::vector<Element*>& bodies) const {
   if (!m_) return;
   for (Element* body : bodies) {
     const std::string* name = body->get("name");
-    const int id = name ? mj_->name2id(m_, mjOBJ_BODY, name->c_str()) : -1;
+    const int id = name ? body_id(*name) : -1;
     if (id <= 0) continue;
     const mjtNum* pos = m_->body_ipos + 3 * id;
     const mjtNum* quat = m_->body_iquat + 4 * id;

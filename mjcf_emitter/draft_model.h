@@ -23,6 +23,7 @@ class DraftModel {
   DraftModel& operator=(const DraftModel&) = delete;
 
   const mjModel* model() const { return m_; }
+  int body_id(const std::string& name) const { return mj_->name2id(m_, mjOBJ_BODY, name.c_str()); }
   const std::string& error() const { return error_; }  // why it did not load
 
   // Writes <inertial pos quat mass diaginertia> with the draft's mass properties into each body element

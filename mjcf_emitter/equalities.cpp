@@ -167,7 +167,7 @@ void Lowering::finish_with_draft(Element& root) {
     return;
   }
   draft.write_inertials(mesh_bodies);
-  const SoftEqualityResult r = apply_soft_equalities(draft.model(), soft_equalities_, options_.timestep,
+  const SoftEqualityResult r = apply_soft_equalities(draft, soft_equalities_, options_.timestep,
                                                      options_.mujoco == EmitOptions::MuJoCo::V3);
   for (const std::string& e : r.unstable) {
     warn({}, "equality " + e + " is stiffer than explicit integration at " + number(options_.timestep) +

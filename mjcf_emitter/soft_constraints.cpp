@@ -1,7 +1,5 @@
 #include "mjcf_emitter/soft_constraints.h"
 
-#include "mjcf_emitter/mujoco_library.h"
-
 #include <cmath>
 
 namespace openplx::mjcf {
@@ -33,17 +31,16 @@ bool simple_in_mujoco3(const mjModel* m, int b) {
 
 }  // namespace
 
-SoftEqualityResult apply_soft_equalities(const mjModel* m, const std::vector<PendingSoftEquality>& pending,
-                                         double timestep, bool mujoco3) {
+SoftEqualityResult apply_soft_equalities(const DraftModel& draft,
+                                         const std::vector<PendingSoftEquality>& pending, double timestep,
+                                         bool mujoco3) {
   SoftEqualityResult result;
-  std::string error;
-  const MuJoCoLibrary* mj = mujoco_library(error);  // loaded already: `m` came from it
-  if (!mj) return result;
+  const mjModel* m = draft.model();
   const double d = kSoftImpedance;
   for (const PendingSoftEquality& p : pending) {
     double dA = 0, dA_rot = 0;
     for (const std::string& body : {p.body1, p.body2}) {
-      const int id = body == "world" ? 0 : mj->name2id(m, mjOBJ_BODY, body.c_str());
+      const int id = body == "world" ? 0 : draft.body_id(body);
       if (id <= 0) continue;
       dA += mujoco3 && simple_in_mujoco3(m, id) ? 1 / m->body_mass[id] : m->body_invweight0[2 * id];
       dA_rot += m->body_invweight0[2 * id + 1];

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mjcf_emitter/draft_model.h"
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::mjcf {
@@ -40,7 +41,7 @@ struct SoftEqualityResult {
 // Writes solref/solimp (and torquescale) on every pending equality from the draft's body_invweight0, by the
 // law of the target MuJoCo (spec/mujoco3-notes.md 4.2.4-4.2.5): 3.x takes dA = 1/m for "simple" bodies and
 // applies torquescale squared against the rotational dA, where 2.2.2 used the translational dA for all rows.
-SoftEqualityResult apply_soft_equalities(const mjModel* draft,
+SoftEqualityResult apply_soft_equalities(const DraftModel& draft,
                                          const std::vector<PendingSoftEquality>& pending, double timestep,
                                          bool mujoco3);
 
