@@ -12,7 +12,7 @@
 #include "frontend/edit_distance.h"
 #include "frontend/import_plugins.h"
 #include "frontend/parser.h"
-#include "frontend/urdf/urdf_import.h"
+#include "frontend/urdf/urdf_importer.h"
 
 namespace openplx::frontend {
 namespace fs = std::filesystem;

@@ -9,6 +9,7 @@
 
 #include "frontend/diagnostics.h"
 #include "frontend/pipeline.h"
+#include "frontend/urdf/urdf_importer.h"
 #include "mjcf_emitter/emitter.h"
 #include "openplx/runtime/simulation.h"
 #include "snap/resolve_system.h"
@@ -27,6 +28,10 @@ std::vector<std::string>& default_bundle_dirs() {
 void add_default_bundle_dir(const std::string& dir) {
   auto& dirs = default_bundle_dirs();
   if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
+}
+
+void add_urdf_module(const std::string& path) {
+  frontend::add_urdf_module_candidate(path);
 }
 
 namespace {

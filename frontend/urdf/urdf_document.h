@@ -11,15 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace openplx::frontend {
+#include "frontend/urdf/urdf_result.h"
 
-// A located finding about the URDF: `offset` is a byte offset into its text.
-struct UrdfFinding {
-  bool error = true;
-  uint32_t offset = 0;
-  std::string message;
-  std::vector<std::string> notes;
-};
+namespace openplx::frontend {
 
 class UrdfDocument {
  public:

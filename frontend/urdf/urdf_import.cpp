@@ -13,6 +13,7 @@
 #include "frontend/urdf/package_lookup.h"
 #include "frontend/urdf/package_uri.h"
 #include "frontend/urdf/physical_inertia.h"
+#include "frontend/urdf/urdf_document.h"
 
 namespace openplx::frontend {
 namespace {
@@ -324,7 +325,8 @@ Eigen::Vector3d connector_normal(const urdf::Joint& joint) {
 
 }  // namespace
 
-UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name) {
+UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text,
+                        const std::string& model_name) {
   UrdfImport result;
   UrdfDocument doc(urdf_text);
   if (!doc.well_formed()) {

@@ -12,23 +12,14 @@
 // SNAP or in the emitter) point at the URDF's own file and line.
 #pragma once
 
-#include <cstdint>
-#include <optional>
 #include <string>
-#include <vector>
 
-#include "frontend/urdf/urdf_document.h"
+#include "frontend/urdf/urdf_result.h"
 
 namespace openplx::frontend {
 
-struct UrdfImport {
-  std::optional<std::string> text;     // OpenPLX declaring the model; nullopt when the URDF is rejected
-  std::vector<uint32_t> line_origins;  // per generated line: a byte offset into the URDF text
-  std::vector<UrdfFinding> findings;   // errors and warnings, located in the URDF text
-  std::string robot_name;              // <robot name="...">
-};
-
-// Imports the URDF at `path` whose text is `urdf_text` as model `model_name`.
-UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name);
+// Converts the URDF at `path` whose text is `urdf_text` into model `model_name`. Runs inside the importer
+// module; the front end calls import_urdf (urdf_importer.h).
+UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name);
 
 }  // namespace openplx::frontend

@@ -154,4 +154,13 @@ inline const bool installed_bundles_registered =
     (add_default_bundle_dir(OPENPLX2MJCF_INSTALLED_BUNDLES), true);
 #endif
 
+// Adds a file tried for the URDF importer module (libopenplx_urdf.so, loaded on the first URDF import) when
+// the library is not run from its build or install tree. The installed CMake package registers its own.
+void add_urdf_module(const std::string& path);
+
+#ifdef OPENPLX2MJCF_INSTALLED_URDF_MODULE
+inline const bool installed_urdf_module_registered =
+    (add_urdf_module(OPENPLX2MJCF_INSTALLED_URDF_MODULE), true);
+#endif
+
 }  // namespace openplx::runtime
