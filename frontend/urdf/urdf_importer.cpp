@@ -56,7 +56,7 @@ const LoadedModule& loaded_module() {
         continue;
       }
       // Never closed: its code may still be on a stack when the process ends.
-      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);  // lazy: binds only what a URDF uses
       if (!handle) {
         const char* why = dlerror();
         m.error = "cannot load the URDF importer " + path + ": " + (why ? why : "unknown error");
