@@ -817,8 +817,10 @@ Value Evaluator::owned_default(ObjectId id, Slot& slot) {
     return Value::error();
   }
   const std::string name(slot.name());
+  const bool pure = !slot.entries_below;
   const ObjectId child = new_object(model, id, name);
   graph_.at(child).created_by = slot.declaration();
+  graph_.at(child).pure_default = pure;
   return Value::of_object(child);
 }
 
@@ -858,20 +860,32 @@ void Evaluator::evaluate_all(ObjectId root) {
 }
 
 void Evaluator::evaluate_layouts(ObjectId root) {
-  std::vector<ObjectId> todo{root};
+  // An item is an object to check, or (through) the end of the first pure default of its type's subtree.
+  struct Item {
+    ObjectId id;
+    bool through = false;
+  };
+  std::vector<Item> todo{{root}};
   while (!todo.empty()) {
-    const ObjectId id = todo.back();
+    const auto [id, through] = todo.back();
     todo.pop_back();
     const uint32_t layout = graph_.at(id).layout;
+    if (through) {  // everything below it has been checked: the type's defaults are quiet or not
+      checked_defaults_[graph_.at(id).type] = noisy_.count(layout) ? kNoObject : id;
+      continue;
+    }
     // Depth first: the first instance's whole subtree is checked before any other instance is reached,
     // except the instances inside it (a model owning its own kind), which are checked like it.
     auto [checked, first] = checked_.try_emplace(layout, id);
     if (!first && !noisy_.count(layout) && !owns_transitively(checked->second, id)) continue;
+    if (graph_.at(id).pure_default && checked_defaults_.try_emplace(graph_.at(id).type, kNoObject).second)
+      todo.push_back({id, true});  // popped after its subtree
     const size_t reported = sink_.diagnostics().size();
     for (uint32_t i = 0; i < graph_.at(id).slots.size(); ++i) {
+      if (may_skip(id, i)) continue;  // the same as a pure default checked already
       const Value& v = value(id, i);
       const Slot& slot = graph_.at(id).slots[i];
-      if (slot.owns && v.kind == Value::Kind::Object) todo.push_back(v.object);
+      if (slot.owns && v.kind == Value::Kind::Object) todo.push_back({v.object});
     }
     if (sink_.diagnostics().size() == reported) continue;
     for (ObjectId cur = id; cur != kNoObject; cur = graph_.at(cur).owner)
@@ -884,6 +898,29 @@ bool Evaluator::owns_transitively(ObjectId owner, ObjectId id) const {
     if (cur == owner) return true;
   }
   return false;
+}
+
+const ModelInfo* Evaluator::pending_default(ObjectId object, uint32_t slot_index) const {
+  const Slot& slot = graph_.at(object).slots[slot_index];
+  if (slot.state != Slot::State::Pending || slot.binding.entry || slot.entries_below || slot.preset ||
+      slot.optional())
+    return nullptr;
+  const Type& type = *slot.type();
+  if (type.kind != TypeKind::Model || type.is_array || type.model->is_trait || type.model->is_const)
+    return nullptr;
+  return type.model;
+}
+
+ObjectId Evaluator::checked_default(const ModelInfo* type) const {
+  auto it = checked_defaults_.find(type);
+  return it == checked_defaults_.end() ? kNoObject : it->second;
+}
+
+bool Evaluator::may_skip(ObjectId holder, uint32_t slot) const {
+  const ModelInfo* type = pending_default(holder, slot);
+  const ObjectId checked = type ? checked_default(type) : kNoObject;
+  // No deeper than the checked one: the instance-depth limit then stops neither of them.
+  return checked != kNoObject && graph_.at(holder).depth + 1 <= graph_.at(checked).depth;
 }
 
 ObjectId Evaluator::checked_instance(const Object& object) const {

@@ -83,6 +83,13 @@ class Evaluator {
   void evaluate_layouts(ObjectId root);
   // The instance of `object`'s layout that evaluate_layouts evaluated in full; kNoObject when none was.
   ObjectId checked_instance(const Object& object) const;
+  // The type of the pure default (Object::pure_default) that slot `slot` of `object` will hold once read;
+  // nullptr when it is evaluated already or holds anything else.
+  const ModelInfo* pending_default(ObjectId object, uint32_t slot) const;
+  // The first pure default of `type` that evaluate_layouts checked, with everything below it, without a
+  // report; kNoObject when there is none. Every other pure default of the type has the same values, so
+  // evaluate_layouts leaves those unmade and a reader may read this one in their place.
+  ObjectId checked_default(const ModelInfo* type) const;
   // The value of one attribute (evaluated on first use).
   const Value& value(ObjectId object, uint32_t slot);
   const Value* value(ObjectId object, std::string_view slot);
@@ -216,7 +223,10 @@ class Evaluator {
   int eval_depth_ = 0;
   std::unordered_map<const MethodInfo*, PreparedMethod> prepared_methods_;
   std::unordered_map<uint32_t, ObjectId> checked_;  // layout -> its instance evaluated in full
-  std::unordered_set<uint32_t> noisy_;              // layouts whose check reported something
+  // Type -> its first pure default once that was checked through (kNoObject: it reported something).
+  std::unordered_map<const ModelInfo*, ObjectId> checked_defaults_;
+  bool may_skip(ObjectId holder, uint32_t slot) const;
+  std::unordered_set<uint32_t> noisy_;  // layouts whose check reported something
   // Slot layouts shared by instances of one type reached by the same enclosing entries (see build_slots).
   struct Layout {
     ModelInfo* type = nullptr;  // after `with` lines of enclosing blocks

@@ -75,6 +75,9 @@ struct Object {  // fields ordered so that none pads: there is one per instance
   const Entry* created_by = nullptr;  // the declaration of the owning attribute, for owned defaults
   uint32_t layout = 0;  // instances with one layout have the same slots bound by the same entries
   bool is_const_singleton = false;
+  // An owned default no entry assigns or reaches into: its values are its type's alone, the same in every
+  // such instance (Evaluator::checked_default).
+  bool pure_default = false;
   std::vector<Slot> slots;
   std::shared_ptr<const SlotIndex> index;
   std::shared_ptr<const std::vector<SlotInfo>> infos;  // what the slots' info point at

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #include "frontend/evaluator.h"
@@ -100,13 +102,33 @@ class AttributeReader {
     return out;
   }
   const std::string& type_name(frontend::ObjectId id) const { return graph().at(id).type->qualified; }
+  // The attribute's type when it is still to become that type's own default instance: nothing assigns it
+  // or reaches into it, so its values are the type's alone and the same in every such attribute. A value
+  // read from one can stand for all (a body's transforms are five objects each, read once). Else nullptr.
+  template <typename Attribute>
+  const frontend::ModelInfo* pending_default(frontend::ObjectId id, const Attribute& attribute) const;
+  // An owned part read only for its values (never for where it is): a pending default reads as the checked
+  // default of its type (Evaluator::checked_default), which has the same values, instead of being made.
+  template <typename Attribute>
+  frontend::ObjectId values_of(frontend::ObjectId id, const Attribute& attribute) {
+    if (const frontend::ModelInfo* type = pending_default(id, attribute)) {
+      if (const frontend::ObjectId same = ev_.checked_default(type); same != frontend::kNoObject) return same;
+    }
+    return object(id, attribute);
+  }
   // A Math.Vec3 attribute (zero when absent; a component that is not a number is 0).
   template <typename Attribute>
   Eigen::Vector3d vec3(frontend::ObjectId id, const Attribute& attribute) {
+    const frontend::ModelInfo* shared = pending_default(id, attribute);
+    if (shared) {
+      if (auto it = default_vec3_.find(shared); it != default_vec3_.end()) return it->second;
+    }
     const frontend::ObjectId v = object(id, attribute);
     if (v == frontend::kNoObject) return Eigen::Vector3d::Zero();
     const SlotTable<3>::Slots xyz = xyz_.of(graph().at(v));
-    return {real(v, xyz[0]), real(v, xyz[1]), real(v, xyz[2])};
+    const Eigen::Vector3d out{real(v, xyz[0]), real(v, xyz[1]), real(v, xyz[2])};
+    if (shared) default_vec3_.emplace(shared, out);
+    return out;
   }
   // A Math.Quat's components x, y, z, w; one absent or not a number is 0 (w: 1).
   std::array<double, 4> xyzw(frontend::ObjectId quat) {
@@ -121,6 +143,19 @@ class AttributeReader {
   // Vectors and quaternions are read on every transform and connector.
   SlotTable<3> xyz_{{"x", "y", "z"}};
   SlotTable<4> xyzw_{{"x", "y", "z", "w"}};
+  std::unordered_map<const frontend::ModelInfo*, Eigen::Vector3d> default_vec3_;  // by pending_default
 };
+
+template <typename Attribute>
+const frontend::ModelInfo* AttributeReader::pending_default(frontend::ObjectId id,
+                                                            const Attribute& attribute) const {
+  if constexpr (std::is_same_v<Attribute, AttributeSlot>) {
+    return attribute.present() ? ev_.pending_default(id, attribute.index) : nullptr;
+  } else {
+    const frontend::Object& object = graph().at(id);
+    auto it = object.index->find(attribute);
+    return it == object.index->end() ? nullptr : ev_.pending_default(id, it->second);
+  }
+}
 
 }  // namespace openplx::snap

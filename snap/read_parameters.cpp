@@ -19,7 +19,7 @@ Damping read_damping(AttributeReader& in, fe::ObjectId dissipation) {
 
 MateFriction read_friction(AttributeReader& in, fe::ObjectId mate, const char* attribute) {
   MateFriction f;
-  const fe::ObjectId friction = in.object(mate, attribute);
+  const fe::ObjectId friction = in.values_of(mate, attribute);
   if (friction == fe::kNoObject) return f;
   f.type = in.type_name(friction);
   f.coefficient = in.real(friction, "coefficient");
@@ -31,8 +31,9 @@ MateFriction read_friction(AttributeReader& in, fe::ObjectId mate, const char* a
 
 void read_mate_parameters(AttributeReader& in, fe::ObjectId id, Mate& mate) {
   mate.enabled = in.boolean(id, "enabled").value_or(true);
-  const fe::ObjectId flexibility = in.object(id, "flexibility");
-  const fe::ObjectId dissipation = in.object(id, "dissipation");
+  // Read for their values only: a default no entry touches is read from its type's checked one.
+  const fe::ObjectId flexibility = in.values_of(id, "flexibility");
+  const fe::ObjectId dissipation = in.values_of(id, "dissipation");
   if (flexibility != fe::kNoObject) {
     mate.flexible = true;
     mate.flexibility_type = in.type_name(flexibility);

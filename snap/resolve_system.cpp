@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 
@@ -287,6 +288,16 @@ class SystemBuilder {
     if (!slot.type() || slot.type()->kind != fe::TypeKind::Model || slot.type()->is_array || slot.optional())
       return false;                       // no owned part (arrays and references are not parts)
     if (slot.entries_below) return true;  // entries on its parts may add anything
+    if (const fe::ModelInfo* type = ev_.pending_default(id, k)) {
+      // A pure default has its type's parts: answered on the checked default of that type.
+      if (const fe::ObjectId same = ev_.checked_default(type); same != fe::kNoObject) {
+        auto [it, fresh] = default_holds_parts_.try_emplace(type, true);  // true while being decided
+        if (!fresh) return it->second;
+        const bool holds = subtree_has_roles(same);  // may add entries: `it` is not kept
+        default_holds_parts_[type] = holds;
+        return holds;
+      }
+    }
     const fe::ObjectId checked = ev_.checked_instance(obj);
     if (checked == fe::kNoObject || checked == id) return true;
     auto [it, fresh] = holds_parts_.try_emplace({obj.layout, k}, true);  // true while being decided
@@ -393,16 +404,11 @@ class SystemBuilder {
       body.dynamic = d->bool_value;
     if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
       body.mass = real(inertia, "mass");
-      if (fe::ObjectId tensor = object(inertia, "tensor"); tensor != fe::kNoObject) {
-        const SlotTable<9>::Slots e = tensor_slots_.of(ev_.graph().at(tensor));
-        for (int r = 0; r < 3; ++r) {
-          for (int c = 0; c < 3; ++c) body.inertia(r, c) = in_.real(tensor, e[3 * r + c]);
-        }
-      }
+      if (std::optional<Eigen::Matrix3d> tensor = inertia_tensor(inertia)) body.inertia = *tensor;
     }
     if (fe::ObjectId kinematics = object(id, "kinematics"); kinematics != fe::kNoObject) {
-      if (fe::ObjectId cm = object(kinematics, "local_cm_transform"); cm != fe::kNoObject)
-        body.cm = affine(cm);
+      if (std::optional<Transform> cm = transform_of(kinematics, std::string_view("local_cm_transform")))
+        body.cm = *cm;
       body.initial_linear_velocity = vec3(kinematics, "initial_local_linear_velocity");
       body.initial_angular_velocity = vec3(kinematics, "initial_local_angular_velocity");
     }
@@ -419,7 +425,7 @@ class SystemBuilder {
     for (const auto& [model, shape] : shapes_) {
       if (obj.type->is_subtype_of(model)) g.shape = shape;
     }
-    if (fe::ObjectId t = object(id, "local_transform"); t != fe::kNoObject) g.local = affine(t);
+    if (std::optional<Transform> t = transform_of(id, std::string_view("local_transform"))) g.local = *t;
     switch (g.shape) {
       case Geometry::Shape::Box:
         g.size = vec3(id, "size");
@@ -828,6 +834,39 @@ class SystemBuilder {
     return t;
   }
 
+  // A transform attribute; one still to become its type's own default is read once per type
+  // (AttributeReader::pending_default), so no instance is built for it.
+  template <typename Attribute>
+  std::optional<Transform> transform_of(fe::ObjectId holder, const Attribute& attribute) {
+    const fe::ModelInfo* shared = in_.pending_default(holder, attribute);
+    if (shared) {
+      if (auto it = default_transforms_.find(shared); it != default_transforms_.end()) return it->second;
+    }
+    const fe::ObjectId transform = in_.object(holder, attribute);
+    if (transform == fe::kNoObject) return std::nullopt;
+    const Transform t = affine(transform);
+    if (shared) default_transforms_.emplace(shared, t);
+    return t;
+  }
+
+  // An Inertia's tensor (Math.Matrix3x3), read once per type when it is a pending default.
+  std::optional<Eigen::Matrix3d> inertia_tensor(fe::ObjectId inertia) {
+    const std::string_view name = "tensor";
+    const fe::ModelInfo* shared = in_.pending_default(inertia, name);
+    if (shared) {
+      if (auto it = default_tensors_.find(shared); it != default_tensors_.end()) return it->second;
+    }
+    const fe::ObjectId tensor = object(inertia, name);
+    if (tensor == fe::kNoObject) return std::nullopt;
+    const SlotTable<9>::Slots e = tensor_slots_.of(ev_.graph().at(tensor));
+    Eigen::Matrix3d m;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) m(r, c) = in_.real(tensor, e[3 * r + c]);
+    }
+    if (shared) default_tensors_.emplace(shared, m);
+    return m;
+  }
+
   // The local transform slot of a system (`local_transform`) or body (`kinematics.local_transform`).
   bool read_transform(fe::ObjectId id, Transform& out) {
     fe::ObjectId holder = id;
@@ -837,9 +876,9 @@ class SystemBuilder {
       holder = kinematics->object;
     }
     const AttributeSlot slot = local_transform_slot_.of(ev_.graph().at(holder))[0];
-    const fe::ObjectId transform = in_.object(holder, slot);
-    if (transform == fe::kNoObject) return false;
-    out = affine(transform);
+    const std::optional<Transform> transform = transform_of(holder, slot);
+    if (!transform) return false;
+    out = *transform;
     return ev_.graph().at(holder).slots[slot.index].explicit_value;
   }
 
@@ -1058,6 +1097,10 @@ class SystemBuilder {
   SlotTable<2> transform_slots_{{"position", "rotation"}};
   SlotTable<9> tensor_slots_{{"e00", "e01", "e02", "e10", "e11", "e12", "e20", "e21", "e22"}};
   SlotTable<1> local_transform_slot_{{"local_transform"}};
+  // Values of attributes that are their type's own default, by type (transform_of, inertia_tensor).
+  std::unordered_map<const fe::ModelInfo*, Transform> default_transforms_;
+  std::unordered_map<const fe::ModelInfo*, bool> default_holds_parts_;  // by pure default type (holds_parts)
+  std::unordered_map<const fe::ModelInfo*, Eigen::Matrix3d> default_tensors_;
   enum SignalAttribute : size_t {
     kSource,
     kTorqueConverter,

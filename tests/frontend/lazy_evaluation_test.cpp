@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "frontend/pipeline.h"
+#include "snap/resolve_system.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
@@ -92,6 +94,77 @@ TEST(LazyEvaluation, ErrorsInASharedLayoutAreReportedAtEveryInstance) {
   const Conversion lazy = convert(model, scratch.path(), false);
   EXPECT_EQ(lazy.status, 1);
   for (const char* path : {"Scene.a.part.x", "Scene.b.part.x", "Scene.c.part.x"}) {
+    EXPECT_NE(lazy.diagnostics.find(std::string("Missing assignment ") + path), std::string::npos) << path;
+  }
+  EXPECT_EQ(lazy.diagnostics, convert(model, scratch.path(), true).diagnostics);
+}
+
+// A default no entry touches (a hinge's flexibility and dissipation parts) has its type's values wherever it
+// is: it is checked once per type and read there, not made again for every instance.
+TEST(LazyEvaluation, UntouchedDefaultsOfOneTypeAreMadeOnce) {
+  openplx::testing::ScratchDir scratch;
+  const fs::path model = scratch.path() / "hinges.openplx";
+  {
+    std::ofstream out(model);
+    out << "Link is Physics3D.Bodies.RigidBody:\n"
+           "    inertia.mass: 1\n"
+           "    top is Physics3D.Interactions.MateConnector:\n"
+           "        main_axis: Math.Vec3.Y_AXIS()\n"
+           "        normal: Math.Vec3.Z_AXIS()\n"
+           "Scene is Physics3D.System:\n";
+    for (int i = 0; i < 4; ++i) {
+      out << "    l" << i << " is Link\n    w" << i << " is Physics3D.Interactions.MateConnector:\n"
+          << "        position: {" << i << ", 0, 2}\n        main_axis: Math.Vec3.Y_AXIS()\n"
+          << "        normal: Math.Vec3.Z_AXIS()\n    h" << i << " is Physics3D.Interactions.Hinge:\n"
+          << "        connectors: [l" << i << ".top, w" << i << "]\n";
+    }
+  }
+  namespace fe = openplx::frontend;
+  ::unsetenv("OPENPLX_EVALUATE_EVERYTHING");
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink;
+  fe::Evaluation evaluation =
+      fe::evaluate_file({model.string(), std::nullopt, {}, std::nullopt}, sources, sink);
+  ASSERT_NE(evaluation.root, fe::kNoObject);
+  const openplx::snap::ResolvedSystem view =
+      openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+  ASSERT_FALSE(sink.has_errors());
+  ASSERT_EQ(view.mates.size(), 4u);
+  size_t flexibilities = 0, dissipations = 0;
+  const fe::ObjectGraph& graph = evaluation.evaluator->graph();
+  for (fe::ObjectId id = 0; id < graph.objects.size(); ++id) {
+    const std::string& type = graph.at(id).type->qualified;
+    flexibilities += type == "Physics3D.Interactions.Flexibility.DefaultHingeFlexibility";
+    dissipations += type == "Physics3D.Interactions.Dissipation.DefaultHingeDissipation";
+  }
+  EXPECT_EQ(flexibilities, 1u);
+  EXPECT_EQ(dissipations, 1u);
+  // And the four mates read the same parameters as eager evaluation gives them.
+  const Conversion lazy = convert(model, scratch.path(), false);
+  const Conversion eager = convert(model, scratch.path(), true);
+  EXPECT_EQ(lazy.status, 0);
+  EXPECT_EQ(lazy.mjcf, eager.mjcf);
+  EXPECT_EQ(lazy.manifest, eager.manifest);
+}
+
+// A default that reports something is made and checked at every instance, so each reports at its own path:
+// here the holders have layouts of their own (each assigns `v`), and their default part misses `x`.
+TEST(LazyEvaluation, ErrorsInAnUntouchedDefaultAreReportedAtEveryInstance) {
+  openplx::testing::ScratchDir scratch;
+  const fs::path model = scratch.path() / "defaults.openplx";
+  std::ofstream(model) << "Part:\n"
+                          "    x is Real\n"
+                          "Holder:\n"
+                          "    part is Part\n"
+                          "    v is Real: 0\n"
+                          "Scene:\n"
+                          "    a is Holder:\n"
+                          "        v: 1\n"
+                          "    b is Holder:\n"
+                          "        v: 2\n";
+  const Conversion lazy = convert(model, scratch.path(), false);
+  EXPECT_EQ(lazy.status, 1);
+  for (const char* path : {"Scene.a.part.x", "Scene.b.part.x"}) {
     EXPECT_NE(lazy.diagnostics.find(std::string("Missing assignment ") + path), std::string::npos) << path;
   }
   EXPECT_EQ(lazy.diagnostics, convert(model, scratch.path(), true).diagnostics);
