@@ -15,6 +15,14 @@ const T* find(std::span<const T> entries, std::string_view name) {
 
 }  // namespace
 
+FileDeclarations declarations(const File& file) {
+  FileDeclarations result;
+  result.complete = file.complete;
+  result.lazy = file.lazy;
+  result.names.assign(kDeclaredNames + file.first_name, kDeclaredNames + file.first_name + file.name_count);
+  return result;
+}
+
 const Dir* find_subdir(const Dir& dir, std::string_view name) {
   return find(subdirs(dir), name);
 }

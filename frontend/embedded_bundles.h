@@ -9,11 +9,17 @@
 #include <span>
 #include <string_view>
 
+#include "frontend/bundle_index.h"
+
 namespace openplx::frontend::embedded {
 
 struct File {
   std::string_view name;
   std::string_view text;
+  // What scan_declarations (bundle_index.h) finds in the text, found at build time: kDeclaredNames from
+  // first_name on, and whether they are complete and lazy.
+  bool complete, lazy;
+  uint32_t first_name, name_count;
 };
 
 // A folder: its sub-folders and .openplx files, each in byte order of their names (as the loader sorts).
@@ -24,6 +30,7 @@ struct Dir {
 
 // The generated tables: kDirs[0] is the root; each folder's sub-folders and files are neighbours.
 extern const File kFiles[];
+extern const std::string_view kDeclaredNames[];
 extern const Dir kDirs[];
 extern const size_t kDirCount;
 
@@ -36,6 +43,9 @@ inline std::span<const Dir> subdirs(const Dir& dir) {
 inline std::span<const File> files(const Dir& dir) {
   return {kFiles + dir.first_file, dir.file_count};
 }
+// As scan_declarations gives them.
+FileDeclarations declarations(const File& file);
+
 const Dir* find_subdir(const Dir& dir, std::string_view name);
 const File* find_file(const Dir& dir, std::string_view name);
 

@@ -163,15 +163,16 @@ void Program::load_namespace(Namespace* ns, bool eager) {
     std::string path = folder + name;
     if (loaded_files_.count(path) || lazy_by_path_.count(path)) continue;
     Found& f = found.emplace_back();
-    if (ns->embedded) {
-      f.id = sources_.add_static(path, embedded::find_file(*ns->embedded, name)->text);
-    } else {
-      f.id = sources_.load(path, f.error);
-    }
+    const embedded::File* copy = ns->embedded ? embedded::find_file(*ns->embedded, name) : nullptr;
+    f.id = copy ? sources_.add_static(path, copy->text) : sources_.load(path, f.error);
     f.path = std::move(path);
     if (!f.id || whole) continue;
-    const SourceFile& source = sources_.file(*f.id);
-    f.declares = scan_declarations(source.text(), source.content_begin());
+    if (copy) {
+      f.declares = embedded::declarations(*copy);  // scanned when the copy was made
+    } else {
+      const SourceFile& source = sources_.file(*f.id);
+      f.declares = scan_declarations(source.text(), source.content_begin());
+    }
     whole = !f.declares.complete;
     names.insert(names.end(), f.declares.names.begin(), f.declares.names.end());
   }

@@ -1,6 +1,9 @@
 # The standard bundles compiled into openplx_frontend (frontend/embedded_bundles.h). Included from
 # frontend/CMakeLists.txt once openplx_frontend exists.
-add_executable(openplx_embed_bundles ${CMAKE_CURRENT_LIST_DIR}/embed_bundles.cpp)
+# The generator scans the files as the loader does, so it compiles the scan (bundle_index.cpp) in.
+add_executable(openplx_embed_bundles ${CMAKE_CURRENT_LIST_DIR}/embed_bundles.cpp
+                                     ${CMAKE_CURRENT_LIST_DIR}/../bundle_index.cpp)
+target_include_directories(openplx_embed_bundles PRIVATE ${PROJECT_SOURCE_DIR})
 
 # Folders are dependencies too: adding or removing an entry changes their time, so the copy is regenerated.
 file(GLOB_RECURSE OPENPLX_BUNDLE_ENTRIES CONFIGURE_DEPENDS LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/bundles/*)

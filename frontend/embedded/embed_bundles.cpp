@@ -1,5 +1,6 @@
-// Build-time generator: writes a C++ source holding every folder and .openplx file under a bundle root, as
-// frontend/embedded_bundles.h declares them. Run as `embed_bundles ROOT OUTPUT`.
+// Build-time generator: writes a C++ source holding every folder and .openplx file under a bundle root, with
+// the declarations the loader's scan finds in each file, as frontend/embedded_bundles.h declares them. Run as
+// `embed_bundles ROOT OUTPUT`.
 //
 // Folders follow the loader (program.cpp, list_folder): every sub-folder (links followed) in byte order of
 // its name. The output depends only on names and contents, so it is the same on every machine.
@@ -11,6 +12,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "frontend/bundle_index.h"
 
 namespace fs = std::filesystem;
 
@@ -102,19 +105,31 @@ int main(int argc, char** argv) {
            "#include \"frontend/embedded_bundles.h\"\n\n"
            "namespace openplx::frontend::embedded {\n\n"
            "const File kFiles[] = {\n";
+    std::vector<std::string> declared;  // every file's names, in file order
     size_t file_count = 0;
     for (const Folder& folder : folders) {
       for (const std::string& name : folder.files) {
         const std::string text = read(folder.path / name);
+        const size_t begin = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // as SourceFile::content_begin
+        const openplx::frontend::FileDeclarations scan = openplx::frontend::scan_declarations(text, begin);
         out << "    {";
         write_literal(out, name);
         out << ", std::string_view(";
         write_literal(out, text);
-        out << ", " << text.size() << ")},\n";
+        out << ", " << text.size() << "), " << std::boolalpha << scan.complete << ", " << scan.lazy << ", "
+            << declared.size() << ", " << scan.names.size() << "},\n";
+        declared.insert(declared.end(), scan.names.begin(), scan.names.end());
         ++file_count;
       }
     }
-    if (file_count == 0) out << "    {\"\", std::string_view()},  // none: an array cannot be empty\n";
+    if (file_count == 0) out << "    {},  // none: an array cannot be empty\n";
+    out << "};\n\nconst std::string_view kDeclaredNames[] = {\n";
+    for (const std::string& name : declared) {
+      out << "    ";
+      write_literal(out, name);
+      out << ",\n";
+    }
+    if (declared.empty()) out << "    {},\n";
     out << "};\n\nconst Dir kDirs[] = {\n";
     size_t first_file = 0;
     for (size_t i = 0; i < folders.size(); ++i) {
