@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "frontend/bundle_index.h"
 #include "frontend/bundles.h"
 #include "frontend/embedded_bundles.h"
 #include "frontend/program.h"
@@ -82,6 +83,17 @@ TEST(EmbeddedBundles, AreTheBundlesFolderFileForFile) {
     }
   }
   for (const auto& [path, text] : copy.files) EXPECT_TRUE(texts.count(path)) << path << ": " << stale;
+}
+
+TEST(EmbeddedBundles, HoldWhatTheScanFindsInEachFile) {
+  for (const auto& [path, text] : embedded_tree().files) {
+    const fe::FileDeclarations scanned =
+        fe::scan_declarations(text, text.starts_with("\xEF\xBB\xBF") ? 3 : 0);
+    const fe::FileDeclarations copy = embedded::declarations(*embedded_file(path));
+    EXPECT_EQ(copy.names, scanned.names) << path;
+    EXPECT_EQ(copy.complete, scanned.complete) << path;
+    EXPECT_EQ(copy.lazy, scanned.lazy) << path;
+  }
 }
 
 TEST(EmbeddedBundles, OnlyTheProjectsFolderIsReadFromTheCopy) {
