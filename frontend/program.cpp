@@ -10,6 +10,7 @@
 #include "frontend/bundle_index.h"
 #include "frontend/deprecations.h"
 #include "frontend/edit_distance.h"
+#include "frontend/embedded_bundles.h"
 #include "frontend/import_plugins.h"
 #include "frontend/parser.h"
 #include "frontend/urdf/urdf_importer.h"
@@ -99,6 +100,7 @@ const BundleConfig* Program::add_bundle(BundleConfig bundle) {
   if (Namespace* existing = bundle_root(bundle.name)) return existing->bundle;
   const BundleConfig& stored = bundles_.emplace_back(std::move(bundle));
   Namespace* root = new_namespace(stored.name, nullptr, stored.dir, &stored);
+  root->embedded = stored.embedded;
   bundle_roots_[stored.name] = root;
   // The 0.17.8 `Charges` namespaces live on as aliases of the models' current homes.
   for (std::string_view old : renamed_namespaces()) {
@@ -130,9 +132,17 @@ void Program::load_namespace(Namespace* ns, bool eager) {
   if (!folder.empty() && folder.back() != '/') folder += '/';
   std::vector<std::string> dirs;
   std::vector<std::string> files;
-  list_folder(ns->dir, dirs, files);
-  for (const std::string& name : dirs) {
-    if (!ns->children.count(name)) ns->children[name] = new_namespace(name, ns, folder + name, ns->bundle);
+  if (ns->embedded) {
+    for (const embedded::Dir& dir : embedded::subdirs(*ns->embedded)) dirs.emplace_back(dir.name);
+    for (const embedded::File& file : embedded::files(*ns->embedded)) files.emplace_back(file.name);
+  } else {
+    list_folder(ns->dir, dirs, files);
+  }
+  for (size_t i = 0; i < dirs.size(); ++i) {
+    const std::string& name = dirs[i];
+    if (ns->children.count(name)) continue;
+    Namespace* child = ns->children[name] = new_namespace(name, ns, folder + name, ns->bundle);
+    if (ns->embedded) child->embedded = &embedded::subdirs(*ns->embedded)[i];
   }
   // Every file is read and scanned before any is parsed. Unless each was scanned completely and no name is
   // declared twice, the folder is parsed as a whole, so that a DuplicateDeclaration comes as it always did.
@@ -153,11 +163,16 @@ void Program::load_namespace(Namespace* ns, bool eager) {
     std::string path = folder + name;
     if (loaded_files_.count(path) || lazy_by_path_.count(path)) continue;
     Found& f = found.emplace_back();
-    f.id = sources_.load(path, f.error);
+    const embedded::File* copy = ns->embedded ? embedded::find_file(*ns->embedded, name) : nullptr;
+    f.id = copy ? sources_.add_static(path, copy->text) : sources_.load(path, f.error);
     f.path = std::move(path);
     if (!f.id || whole) continue;
-    const SourceFile& source = sources_.file(*f.id);
-    f.declares = scan_declarations(source.text(), source.content_begin());
+    if (copy) {
+      f.declares = embedded::declarations(*copy);  // scanned when the copy was made
+    } else {
+      const SourceFile& source = sources_.file(*f.id);
+      f.declares = scan_declarations(source.text(), source.content_begin());
+    }
     whole = !f.declares.complete;
     names.insert(names.end(), f.declares.names.begin(), f.declares.names.end());
   }

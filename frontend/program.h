@@ -66,6 +66,7 @@ struct Namespace {
   std::string qualified;  // "Physics3D.Bodies"; empty for a file's own scope outside bundles
   Namespace* parent = nullptr;
   std::string dir;  // folder on disk whose .openplx files fill it; empty when filled otherwise
+  const embedded::Dir* embedded = nullptr;  // that folder as this build carries it, read instead
   const BundleConfig* bundle = nullptr;
   bool loaded = false;  // its folder was listed: children known, each file parsed or in lazy_files
   std::map<std::string, Namespace*, std::less<>> children;

@@ -10,8 +10,14 @@
 
 namespace openplx::frontend {
 
-SourceFile::SourceFile(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {
-  if (text_.size() >= 3 && text_.compare(0, 3, "\xEF\xBB\xBF") == 0) content_begin_ = 3;
+SourceFile::SourceFile(std::string path, std::string text)
+    : path_(std::move(path)), owned_(std::move(text)), text_(owned_) {
+  if (text_.starts_with("\xEF\xBB\xBF")) content_begin_ = 3;
+}
+
+SourceFile::SourceFile(std::string path, std::string_view text, Static)
+    : path_(std::move(path)), text_(text) {
+  if (text_.starts_with("\xEF\xBB\xBF")) content_begin_ = 3;
 }
 
 const std::vector<uint32_t>& SourceFile::line_starts() const {
@@ -116,6 +122,11 @@ std::optional<FileId> SourceManager::load(const std::string& path, std::string& 
 
 FileId SourceManager::add(std::string path, std::string text) {
   files_.push_back(std::make_unique<SourceFile>(std::move(path), std::move(text)));
+  return static_cast<FileId>(files_.size() - 1);
+}
+
+FileId SourceManager::add_static(std::string path, std::string_view text) {
+  files_.push_back(std::make_unique<SourceFile>(std::move(path), text, SourceFile::Static{}));
   return static_cast<FileId>(files_.size() - 1);
 }
 

@@ -31,6 +31,9 @@ struct LineCol {
 class SourceFile {
  public:
   SourceFile(std::string path, std::string text);
+  // A text that outlives the file (the bundles this build carries, embedded_bundles.h), not copied.
+  struct Static {};
+  SourceFile(std::string path, std::string_view text, Static);
 
   const std::string& path() const { return path_; }
   std::string_view text() const { return text_; }
@@ -46,7 +49,8 @@ class SourceFile {
   const std::vector<uint32_t>& line_starts() const;
 
   std::string path_;
-  std::string text_;
+  std::string owned_;
+  std::string_view text_;  // owned_, or a static text
   uint32_t content_begin_ = 0;
   mutable std::once_flag lines_found_;
   mutable std::vector<uint32_t> line_starts_;  // line terminators: LF, CRLF or a lone CR
@@ -57,6 +61,8 @@ class SourceManager {
   // Reads a file from disk. Returns nullopt and sets `error` when it cannot be read.
   std::optional<FileId> load(const std::string& path, std::string& error);
   FileId add(std::string path, std::string text);
+  // A file whose text lives as long as the program (the embedded bundles): viewed, not copied.
+  FileId add_static(std::string path, std::string_view text);
   const SourceFile& file(FileId id) const { return *files_.at(id); }
   size_t size() const { return files_.size(); }
 
