@@ -78,25 +78,26 @@ TEST(LazyEvaluation, EveryModelConvertsToTheSameBytesAsEagerEvaluation) {
   EXPECT_GE(converted, 15u);  // most of them are whole machines, not error cases
 }
 
-// A layout whose first instance reports something is checked at every instance, so each reports at its
-// own path: here three holders share one layout and its part misses an assignment.
-TEST(LazyEvaluation, ErrorsInASharedLayoutAreReportedAtEveryInstance) {
+// `text` fails to convert with "Missing assignment" at each of `paths`, as it does when evaluated eagerly.
+void expect_missing_assignments(const std::string& text, std::initializer_list<const char*> paths) {
   openplx::testing::ScratchDir scratch;
-  const fs::path model = scratch.path() / "shared.openplx";
-  std::ofstream(model) << "Part:\n"
-                          "    x is Real\n"
-                          "Holder:\n"
-                          "    part is Part\n"
-                          "Scene:\n"
-                          "    a is Holder\n"
-                          "    b is Holder\n"
-                          "    c is Holder\n";
+  const fs::path model = scratch.path() / "model.openplx";
+  std::ofstream(model) << text;
   const Conversion lazy = convert(model, scratch.path(), false);
   EXPECT_EQ(lazy.status, 1);
-  for (const char* path : {"Scene.a.part.x", "Scene.b.part.x", "Scene.c.part.x"}) {
+  for (const char* path : paths) {
     EXPECT_NE(lazy.diagnostics.find(std::string("Missing assignment ") + path), std::string::npos) << path;
   }
   EXPECT_EQ(lazy.diagnostics, convert(model, scratch.path(), true).diagnostics);
+}
+
+// A layout whose first instance reports something is checked at every instance, so each reports at its
+// own path: here three holders share one layout and its part misses an assignment.
+TEST(LazyEvaluation, ErrorsInASharedLayoutAreReportedAtEveryInstance) {
+  expect_missing_assignments(
+      "Part:\n    x is Real\nHolder:\n    part is Part\nScene:\n    a is Holder\n    b is Holder\n"
+      "    c is Holder\n",
+      {"Scene.a.part.x", "Scene.b.part.x", "Scene.c.part.x"});
 }
 
 // A default no entry touches (a hinge's flexibility and dissipation parts) has its type's values wherever it
@@ -150,24 +151,10 @@ TEST(LazyEvaluation, UntouchedDefaultsOfOneTypeAreMadeOnce) {
 // A default that reports something is made and checked at every instance, so each reports at its own path:
 // here the holders have layouts of their own (each assigns `v`), and their default part misses `x`.
 TEST(LazyEvaluation, ErrorsInAnUntouchedDefaultAreReportedAtEveryInstance) {
-  openplx::testing::ScratchDir scratch;
-  const fs::path model = scratch.path() / "defaults.openplx";
-  std::ofstream(model) << "Part:\n"
-                          "    x is Real\n"
-                          "Holder:\n"
-                          "    part is Part\n"
-                          "    v is Real: 0\n"
-                          "Scene:\n"
-                          "    a is Holder:\n"
-                          "        v: 1\n"
-                          "    b is Holder:\n"
-                          "        v: 2\n";
-  const Conversion lazy = convert(model, scratch.path(), false);
-  EXPECT_EQ(lazy.status, 1);
-  for (const char* path : {"Scene.a.part.x", "Scene.b.part.x"}) {
-    EXPECT_NE(lazy.diagnostics.find(std::string("Missing assignment ") + path), std::string::npos) << path;
-  }
-  EXPECT_EQ(lazy.diagnostics, convert(model, scratch.path(), true).diagnostics);
+  expect_missing_assignments(
+      "Part:\n    x is Real\nHolder:\n    part is Part\n    v is Real: 0\nScene:\n    a is Holder:\n"
+      "        v: 1\n    b is Holder:\n        v: 2\n",
+      {"Scene.a.part.x", "Scene.b.part.x"});
 }
 
 }  // namespace
