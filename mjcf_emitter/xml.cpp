@@ -46,17 +46,24 @@ std::string number(double value) {
 }
 
 void append_number(std::string& out, double value) {
-  if (value == 0.0) {  // also folds -0, which MuJoCo reads the same
+  if (value == 0.0) {
     out += '0';
     return;
   }
-  char buffer[64];
+  char buffer[kNumberChars];
+  out.append(buffer, write_number(buffer, value));
+}
+
+char* write_number(char* at, double value) {
+  if (value == 0.0) {  // also folds -0, which MuJoCo reads the same
+    *at = '0';
+    return at + 1;
+  }
   // A whole number below 10^4 is its digits in shortest form too (fixed notation is never longer than
   // scientific there): the integer conversion skips the general algorithm.
   const bool small_whole = std::abs(value) < 1e4 && value == std::trunc(value);
-  const auto [end, ec] = small_whole ? std::to_chars(buffer, buffer + sizeof(buffer), static_cast<int>(value))
-                                     : std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out.append(buffer, end);
+  return small_whole ? std::to_chars(at, at + kNumberChars, static_cast<int>(value)).ptr
+                     : std::to_chars(at, at + kNumberChars, value).ptr;
 }
 
 std::string numbers(std::initializer_list<double> values) {

@@ -318,6 +318,23 @@ TEST(Manifest, StringsAreEscapedAndNumbersShortest) {
       << json;
 }
 
+// The manifest scans strings eight bytes at a time for what to escape: each escaped character, and other
+// control characters and UTF-8, at every position of a word and of the tail, is written as fe::quoted writes
+// it.
+TEST(Manifest, EscapesAtEveryPositionAsQuotedDoes) {
+  for (const char special : {'"', '\\', '\n', '\t', '\r', '\x01', '\x1f', ' ', '\x7f', '\xc3'}) {
+    for (size_t at = 0; at < 19; ++at) {
+      mj::SignalBinding b;
+      b.path = std::string(19, 'a');
+      b.path[at] = special;
+      b.reason = b.path.substr(at);
+      const std::string json = mj::manifest_json("model", "p/", {b}, {});
+      EXPECT_NE(json.find("{\"path\": " + fe::quoted(b.path) + ", "), std::string::npos) << json;
+      EXPECT_NE(json.find("\"reason\": " + fe::quoted(b.reason) + ", "), std::string::npos) << json;
+    }
+  }
+}
+
 // The converter writes the manifest in pieces: they join into exactly the text manifest_json gives, and a
 // large manifest (here about 2 MB) comes in many pieces, none much over 64 KiB.
 TEST(Manifest, PiecesJoinIntoTheWholeText) {
