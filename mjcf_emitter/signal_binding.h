@@ -9,6 +9,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace openplx::mjcf {
@@ -161,11 +162,30 @@ struct RuntimeLaw {
 // The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").
 struct SignalKind {
   SignalValue value = SignalValue::Real;
-  std::string unit;
+  std::string_view unit;  // a literal
 };
 SignalKind signal_kind(std::string_view type);
 // A signal model's name without namespace and Input/Output ending: "Physics.Signals.AngleOutput" -> "Angle".
 std::string_view signal_stem(std::string_view type);
+
+// signal_kind and signal_stem worked out once per model name: a large model has thousands of signals of a
+// few models. Names are kept by view, so they must outlive this (the emitter's are the resolved system's).
+class SignalClasses {
+ public:
+  struct Class {
+    SignalKind kind;
+    std::string_view stem;  // in the name
+  };
+  const Class& of(std::string_view type) {
+    auto [it, fresh] = classes_.try_emplace(type);
+    if (fresh) it->second = {signal_kind(type), signal_stem(type)};
+    return it->second;
+  }
+  size_t size() const { return classes_.size(); }
+
+ private:
+  std::unordered_map<std::string_view, Class> classes_;
+};
 
 std::string_view to_string(SignalValue value);
 std::string_view to_string(MjObject object);

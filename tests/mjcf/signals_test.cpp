@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <regex>
+#include <set>
 
 #include "frontend/quoted.h"
 #include "mjcf_emitter/signal_binding.h"
@@ -295,6 +298,38 @@ TEST(SignalKind, UnitsAndValueKindsFollowTheModelName) {
   EXPECT_EQ(mj::signal_kind("Physics3D.Signals.LinearVelocity3DOutput").unit, "m/s");
   EXPECT_EQ(mj::signal_kind("Physics.Signals.EnableInteractionInput").value, mj::SignalValue::Bool);
   EXPECT_EQ(mj::signal_stem("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"), "AngularVelocity3D");
+}
+
+// The emitter classifies a signal's model once per model name: for every Input and Output model the bundles
+// declare, the class is signal_kind's and signal_stem's, and another string of the same name finds it.
+TEST(SignalKind, ClassesAreTheKindAndStemOfEveryBundleSignalModel) {
+  const fs::path bundles = fs::path(OPENPLX_SAMPLES_DIR).parent_path() / "bundles";
+  const std::regex declaration(R"(^([A-Za-z0-9]+(Input|Output)) is )");
+  std::set<std::string> types;
+  for (const fs::directory_entry& file : fs::recursive_directory_iterator(bundles)) {
+    if (file.path().extension() != ".openplx") continue;
+    std::string space;  // a model's namespace is its folder below bundles/
+    for (const fs::path& part : fs::relative(file.path().parent_path(), bundles))
+      space += part.string() + ".";
+    std::ifstream in(file.path());
+    std::smatch match;
+    for (std::string line; std::getline(in, line);) {
+      if (std::regex_search(line, match, declaration)) types.insert(space + match[1].str());
+    }
+  }
+  ASSERT_GE(types.size(), 60u);  // Physics, Physics3D, DriveTrain, Robotics, Control, Sensors signals
+  EXPECT_TRUE(types.count("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"));
+  mj::SignalClasses classes;
+  for (const std::string& type : types) {
+    const mj::SignalClasses::Class& c = classes.of(type);
+    EXPECT_EQ(c.kind.value, mj::signal_kind(type).value) << type;
+    EXPECT_EQ(c.kind.unit, mj::signal_kind(type).unit) << type;
+    EXPECT_EQ(c.stem, mj::signal_stem(type)) << type;
+    EXPECT_FALSE(c.stem.ends_with("Input") || c.stem.ends_with("Output") || c.stem.empty()) << type;
+    const std::string again = type;  // each signal of the view has a string of its own
+    EXPECT_EQ(&classes.of(again), &c) << type;
+  }
+  EXPECT_EQ(classes.size(), types.size());
 }
 
 // The manifest's strings are quoted as frontend::quoted writes them (escapes included), its numbers are the
