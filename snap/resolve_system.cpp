@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 
@@ -20,6 +21,44 @@ namespace {
 
 namespace fe = openplx::frontend;
 static_assert(std::is_same_v<ObjectRef, fe::ObjectId> && kNoObjectRef == fe::kNoObject);
+
+bool in_bundle(const fe::ModelInfo* m) {
+  return m && m->doc && m->doc->bundle;
+}
+
+// Where source_of finds an object declared, from the object's owner `at` up: the nearest attribute declared
+// outside the bundles, or the root model's declaration; nullopt where it falls back on the object's own
+// attribute. The same for every object of one owner; `settled` is false when the climb ended at a free
+// object, which the evaluator may yet adopt.
+std::optional<fe::SourceRange> declared_above(const fe::ObjectGraph& graph, fe::ObjectId at, bool& settled) {
+  settled = true;
+  for (;;) {
+    const fe::Object& obj = graph.at(at);
+    if (obj.owner == fe::kNoObject) {
+      settled = at == graph.root;
+      if (in_bundle(obj.type)) return std::nullopt;
+      return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
+    }
+    const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
+    if (!slot) return std::nullopt;
+    if (!in_bundle(slot->declared_in())) return slot->declaration()->member->range;
+    at = obj.owner;
+  }
+}
+
+// Where an object is declared, as the user sees it: an attribute a bundle model declares (a suspension's
+// `mate`, a wheel's `rim_alignment_mate`) is reported at the user's declaration of the instance holding it,
+// the nearest enclosing attribute declared outside the bundles. `above` is declared_above, or a memo of it.
+template <typename Above>
+fe::SourceRange source_with(const fe::ObjectGraph& graph, fe::ObjectId id, Above&& above) {
+  const fe::Object& obj = graph.at(id);
+  if (obj.owner == fe::kNoObject) return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
+  const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
+  if (!slot) return {};
+  const fe::SourceRange own = slot->declaration()->member->range;
+  if (!in_bundle(slot->declared_in())) return own;
+  return above(obj.owner).value_or(own);
+}
 
 class SystemBuilder {
  public:
@@ -761,7 +800,16 @@ class SystemBuilder {
     add(SignalSource::Lidar, view_.lidars, all);
   }
 
-  fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
+  // source_of, with what lies above an owner found once (a body's signals and connectors share it).
+  fe::SourceRange where_of(fe::ObjectId id) {
+    return source_with(ev_.graph(), id, [&](fe::ObjectId owner) {
+      if (auto it = declared_above_.find(owner); it != declared_above_.end()) return it->second;
+      bool settled;
+      const std::optional<fe::SourceRange> above = declared_above(ev_.graph(), owner, settled);
+      if (settled) declared_above_.emplace(owner, above);
+      return above;
+    });
+  }
 
   // ObjectGraph::path, built on the owner's path when that is kept (a body's signals and connectors share
   // it).
@@ -1137,30 +1185,15 @@ class SystemBuilder {
   std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;
-  std::unordered_map<fe::ObjectId, std::string> rooted_paths_;  // see rooted_path
+  std::unordered_map<fe::ObjectId, std::string> rooted_paths_;                       // see rooted_path
+  std::unordered_map<fe::ObjectId, std::optional<fe::SourceRange>> declared_above_;  // see where_of
 };
 
 }  // namespace
 
-// Where an object is declared, as the user sees it: an attribute a bundle model declares (a suspension's
-// `mate`, a wheel's `rim_alignment_mate`) is reported at the user's declaration of the instance holding it,
-// the nearest enclosing attribute declared outside the bundles.
 frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id) {
-  auto in_bundle = [](const fe::ModelInfo* m) { return m && m->doc && m->doc->bundle; };
-  fe::SourceRange first;
-  for (fe::ObjectId at = id; at != fe::kNoObject;) {
-    const fe::Object& obj = graph.at(at);
-    if (obj.owner == fe::kNoObject) {
-      const fe::SourceRange root = obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
-      return in_bundle(obj.type) && at != id ? first : root;
-    }
-    const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
-    if (!slot) return first;
-    if (at == id) first = slot->declaration()->member->range;
-    if (!in_bundle(slot->declared_in())) return slot->declaration()->member->range;
-    at = obj.owner;
-  }
-  return first;
+  bool settled;
+  return source_with(graph, id, [&](fe::ObjectId owner) { return declared_above(graph, owner, settled); });
 }
 
 ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,
