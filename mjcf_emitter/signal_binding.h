@@ -169,7 +169,9 @@ SignalKind signal_kind(std::string_view type);
 std::string_view signal_stem(std::string_view type);
 
 // signal_kind and signal_stem worked out once per model name: a large model has thousands of signals of a
-// few models. Names are kept by view, so they must outlive this (the emitter's are the resolved system's).
+// few models. A name is known by where it is held, not by its text: the view's are its models' names, each
+// held once by the program, so a model is classified once and no name is hashed; an equal name held
+// elsewhere is classified again, alike. Names must outlive this.
 class SignalClasses {
  public:
   struct Class {
@@ -184,7 +186,15 @@ class SignalClasses {
   size_t size() const { return classes_.size(); }
 
  private:
-  std::unordered_map<std::string_view, Class> classes_;
+  struct Where {
+    size_t operator()(std::string_view s) const { return std::hash<const char*>{}(s.data()) ^ s.size(); }
+  };
+  struct Same {
+    bool operator()(std::string_view a, std::string_view b) const {
+      return a.data() == b.data() && a.size() == b.size();
+    }
+  };
+  std::unordered_map<std::string_view, Class, Where, Same> classes_;
 };
 
 std::string_view to_string(SignalValue value);

@@ -42,7 +42,7 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
     const sn::Signal& s = view_.signals[k];
     SignalBinding& b = out[k];
     if ((!b.input || s.composite) && b.enabled && b.quantity == Quantity::None) {
-      warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + s.type +
+      warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + b.type +
                         ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
     }
     if (!b.input && b.enabled && !s.composite && !s.imu) add_sensor(b);

@@ -250,7 +250,7 @@ class SystemBuilder {
         add_interaction(id);
         break;
       case Role::Kind::Signal:
-        add_signal(id);
+        add_signal(id, role.signal);
         break;
       case Role::Kind::VisualMaterial:
         view_.visual_materials.push_back(read_visual_material(in_, id));
@@ -376,6 +376,10 @@ class SystemBuilder {
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
+    // A signal's model: which of the models add_signal reads differently it is.
+    struct SignalModel {
+      bool input = false, broadcast = false, affine_input = false, affine_output = false, imu = false;
+    } signal;
   };
   Role role_of(const fe::ModelInfo* type) {
     auto [it, fresh] = roles_.try_emplace(type);
@@ -409,6 +413,9 @@ class SystemBuilder {
                 : sub(visual_material_)                           ? K::VisualMaterial
                 : sub(contact_model_)                             ? K::ContactModel
                                                                   : K::None;
+    if (role.kind == K::Signal) {
+      role.signal = {sub(input_), sub(broadcast_), sub(affine_input_), sub(affine_output_), sub(imu_output_)};
+    }
     return role;
   }
 
@@ -645,29 +652,30 @@ class SystemBuilder {
     }
   }
 
-  void add_signal(fe::ObjectId id) {
+  void add_signal(fe::ObjectId id, const Role::SignalModel& model) {
     const fe::Object& obj = ev_.graph().at(id);
-    Signal signal;
+    const size_t index = view_.signals.size();
+    Signal& signal = view_.signals.emplace_back();  // filled in place
     signal.object = id;
-    signal.input = is(obj, input_);
+    signal.input = model.input;
     signal.path = path_of(id);
     signal.type = obj.type->qualified;
     // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
     // `source` is the signal it transforms.
     const SignalSlots::Slots slots = signal_slots_.of(obj);
-    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : in_.object(id, slots[kSource]);
+    const fe::ObjectId source = model.affine_output ? fe::kNoObject : in_.object(id, slots[kSource]);
     signal_sources_.push_back(source != fe::kNoObject ? source : in_.object(id, slots[kTorqueConverter]));
     signal.where = where_of(id);
     signal.enabled = in_.boolean(id, slots[kEnabled]).value_or(signal.enabled);
-    std::vector<fe::ObjectId> parts;
+    std::vector<fe::ObjectId>& parts = composite_parts_.emplace_back();
     for (size_t list : {kTargets, kJointSources, kObjectSources, kSources}) {
       if (!slots[list].present()) continue;
       signal.composite = true;
       for (fe::ObjectId part : in_.objects(id, slots[list])) parts.push_back(part);
     }
     using Composition = Signal::Composition;
-    if (is(obj, broadcast_)) signal.composition = Composition::Broadcast;
-    if (is(obj, affine_input_) || is(obj, affine_output_)) {
+    if (model.broadcast) signal.composition = Composition::Broadcast;
+    if (model.affine_input || model.affine_output) {
       signal.composite = true;
       signal.composition = Composition::Affine;
       signal.scale = real(id, "scale", 1.0);
@@ -675,7 +683,7 @@ class SystemBuilder {
       parts = {object(id, signal.input ? "target" : "source")};
     }
     if (slots[kSensors].present()) signal.sensors = in_.objects(id, slots[kSensors]).size();
-    if (is(obj, imu_output_)) {
+    if (model.imu) {
       signal.imu = true;
       // A sensor without an attachment of its own sits where the IMU is attached.
       const fe::ObjectId imu = object(id, "source");
@@ -694,14 +702,12 @@ class SystemBuilder {
                                               : Kind::Unknown;
           f.sensor_path = path_of(sensor);
           const fe::ObjectId own = object(sensor, "mate_connector_attachment");
-          sensor_attachments_.emplace_back(view_.signals.size(), signal.sensor_fields.size(),
+          sensor_attachments_.emplace_back(index, signal.sensor_fields.size(),
                                            own != fe::kNoObject ? own : imu_attachment);
         }
         signal.sensor_fields.push_back(std::move(f));
       }
     }
-    composite_parts_.push_back(std::move(parts));
-    view_.signals.push_back(std::move(signal));
   }
 
   // Materials by index, shared by geometries and contact models (the same material, the same index).

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <list>
 #include <map>
 #include <regex>
 #include <set>
@@ -300,8 +301,9 @@ TEST(SignalKind, UnitsAndValueKindsFollowTheModelName) {
   EXPECT_EQ(mj::signal_stem("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"), "AngularVelocity3D");
 }
 
-// The emitter classifies a signal's model once per model name: for every Input and Output model the bundles
-// declare, the class is signal_kind's and signal_stem's, and another string of the same name finds it.
+// The emitter classifies a signal's model once per model name held: for every Input and Output model the
+// bundles declare, the class is signal_kind's and signal_stem's, found again for the same name held, and
+// alike for an equal name held elsewhere.
 TEST(SignalKind, ClassesAreTheKindAndStemOfEveryBundleSignalModel) {
   const fs::path bundles = fs::path(OPENPLX_SAMPLES_DIR).parent_path() / "bundles";
   const std::regex declaration(R"(^([A-Za-z0-9]+(Input|Output)) is )");
@@ -320,16 +322,21 @@ TEST(SignalKind, ClassesAreTheKindAndStemOfEveryBundleSignalModel) {
   ASSERT_GE(types.size(), 60u);  // Physics, Physics3D, DriveTrain, Robotics, Control, Sensors signals
   EXPECT_TRUE(types.count("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"));
   mj::SignalClasses classes;
+  std::list<std::string> elsewhere;  // names held apart from `types`, for as long as `classes` is used
   for (const std::string& type : types) {
     const mj::SignalClasses::Class& c = classes.of(type);
     EXPECT_EQ(c.kind.value, mj::signal_kind(type).value) << type;
     EXPECT_EQ(c.kind.unit, mj::signal_kind(type).unit) << type;
     EXPECT_EQ(c.stem, mj::signal_stem(type)) << type;
     EXPECT_FALSE(c.stem.ends_with("Input") || c.stem.ends_with("Output") || c.stem.empty()) << type;
-    const std::string again = type;  // each signal of the view has a string of its own
-    EXPECT_EQ(&classes.of(again), &c) << type;
+    EXPECT_EQ(&classes.of(type), &c) << type;
+    const mj::SignalClasses::Class& alike = classes.of(elsewhere.emplace_back(type));
+    EXPECT_EQ(alike.kind.value, c.kind.value) << type;
+    EXPECT_EQ(alike.kind.unit, c.kind.unit) << type;
+    EXPECT_EQ(alike.stem, c.stem) << type;
+    EXPECT_GE(alike.stem.data(), elsewhere.back().data()) << type;  // in the name it was asked for
   }
-  EXPECT_EQ(classes.size(), types.size());
+  EXPECT_EQ(classes.size(), 2 * types.size());
 }
 
 // The manifest's strings are quoted as frontend::quoted writes them (escapes included), its numbers are the
