@@ -80,6 +80,15 @@ class Lowering {
     b.names.clear();
     b.names.push_back(std::move(element));  // moved: a braced list would copy it
   }
+  // Text joined with one allocation (a reason for each of thousands of signals).
+  static std::string concat(std::initializer_list<std::string_view> parts) {
+    size_t size = 0;
+    for (std::string_view part : parts) size += part.size();
+    std::string text;
+    text.reserve(size);
+    for (std::string_view part : parts) text += part;
+    return text;
+  }
   static bool any_of(std::string_view stem, std::initializer_list<std::string_view> stems) {
     for (std::string_view s : stems) {  // a loop the compiler unrolls, where std::find is a call
       if (s == stem) return true;

@@ -252,22 +252,27 @@ constexpr std::array<bool, 256> kEscaped = [] {
   return table;
 }();
 
-// Whether `text` has nothing to escape, eight bytes at a time (names and paths rarely have anything). A word
-// with a byte below 0x20 also fails, which only sends it through the exact escaping loop.
+// Whether `text` has nothing to escape, eight bytes at a time (names and paths rarely have anything), the
+// last eight overlapping the others. A word with a byte below 0x20 also fails, which only sends it through
+// the exact escaping loop.
 bool plain(std::string_view text) {
+  if (text.size() < 8) {
+    for (char c : text) {
+      if (kEscaped[static_cast<unsigned char>(c)]) return false;
+    }
+    return true;
+  }
   constexpr uint64_t kOnes = 0x0101010101010101, kHigh = 0x8080808080808080;
   auto has_zero = [](uint64_t x) { return (x - kOnes) & ~x & kHigh; };
-  size_t k = 0;
-  for (; k + 8 <= text.size(); k += 8) {
+  auto special = [&](size_t at) {
     uint64_t x;
-    std::memcpy(&x, text.data() + k, 8);
-    if (((x - kOnes * 0x20) & ~x & kHigh) | has_zero(x ^ (kOnes * '"')) | has_zero(x ^ (kOnes * '\\')))
-      return false;
+    std::memcpy(&x, text.data() + at, 8);
+    return ((x - kOnes * 0x20) & ~x & kHigh) | has_zero(x ^ (kOnes * '"')) | has_zero(x ^ (kOnes * '\\'));
+  };
+  for (size_t k = 0; k + 8 < text.size(); k += 8) {
+    if (special(k)) return false;
   }
-  for (; k < text.size(); ++k) {
-    if (kEscaped[static_cast<unsigned char>(text[k])]) return false;
-  }
-  return true;
+  return !special(text.size() - 8);
 }
 
 // Writes the manifest into room made ahead (room_for), so fixed text is a copy of known length and nothing

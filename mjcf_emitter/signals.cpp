@@ -213,7 +213,7 @@ void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) 
       return mapped(b, Quantity::JointPosition, MjObject::Joint, r->second);
     if (effort) return mapped(b, Quantity::JointLimitForce, MjObject::Joint, r->second);
   }
-  return unmapped(b, "`" + i.path + "` has no MuJoCo element that carries it");
+  return unmapped(b, concat({"`", i.path, "` has no MuJoCo element that carries it"}));
 }
 
 // The enabled state of a motor, spring or range: what the runtime zeroes to switch it off, and the effort
@@ -235,9 +235,9 @@ void Lowering::bind_enabled(SignalBinding& b, int k) {
     const auto shared = std::count_if(range_joints_.begin(), range_joints_.end(),
                                       [&](const auto& other) { return other.second == r->second; });
     if (shared > 1) {
-      return unmapped(b, "`" + i.path + "` shares joint " + r->second +
-                             " with other ranges; MuJoCo has one limit per joint, so one range "
-                             "cannot be switched alone");
+      return unmapped(b, concat({"`", i.path, "` shares joint ", r->second,
+                                 " with other ranges; MuJoCo has one limit per joint, so one range "
+                                 "cannot be switched alone"}));
     }
     mapped(b, Quantity::InteractionEnabled, MjObject::Joint, r->second);
     b.low = i.start;
@@ -245,10 +245,10 @@ void Lowering::bind_enabled(SignalBinding& b, int k) {
     return;
   }
   if (auto t = distance_tendons_.find(k); t != distance_tendons_.end()) {
-    return unmapped(b, "`" + i.path + "` is the length limit of MuJoCo tendon " + t->second +
-                           ", which the runtime does not switch on and off");
+    return unmapped(b, concat({"`", i.path, "` is the length limit of MuJoCo tendon ", t->second,
+                               ", which the runtime does not switch on and off"}));
   }
-  return unmapped(b, "`" + i.path + "` was not emitted");
+  return unmapped(b, concat({"`", i.path, "` was not emitted"}));
 }
 
 // A drivetrain part's signals: gears' torques and ratios, clutches' and brakes' torque (the friction row's
@@ -266,7 +266,7 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
   }
   auto tendon = friction_couplings_.find(k);
   if (tendon == friction_couplings_.end())
-    return unmapped(b, "`" + c.path + "` has no MuJoCo element that carries it");
+    return unmapped(b, concat({"`", c.path, "` has no MuJoCo element that carries it"}));
   if (stem == "Torque1D" && !b.input)
     return mapped(b, Quantity::MotorForce, MjObject::Tendon, tendon->second);
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {  // off: no friction at all
@@ -303,7 +303,7 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
     b.initial = disengage ? c.disengagement_duration : c.engagement_duration;
     return;
   }
-  return unmapped(b, "`" + c.path + "`'s " + std::string(stem) + " signal is not mapped yet");
+  return unmapped(b, concat({"`", c.path, "`'s ", stem, " signal is not mapped yet"}));
 }
 
 void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
@@ -319,7 +319,7 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
       return mapped(b, Quantity::TendonLength, MjObject::Tendon, distance->second);
     if (stem == "Force1D" && !b.input)  // the equality row's force along the tendon
       return mapped(b, Quantity::EqualityForce, MjObject::Equality, distance->second);
-    return unmapped(b, "`" + mate.path + "` is a distance constraint without this signal");
+    return unmapped(b, concat({"`", mate.path, "` is a distance constraint without this signal"}));
   }
   const bool tree = tree_mates_.count(m) > 0;
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {
@@ -328,28 +328,28 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
       b.names = e->second;
       return;
     }
-    if (!tree) return unmapped(b, "`" + mate.path + "` was left out of the MJCF");
+    if (!tree) return unmapped(b, concat({"`", mate.path, "` was left out of the MJCF"}));
     if (b.input) {
-      return unmapped(b,
-                      "`" + mate.path + "` is a joint of MuJoCo's body tree, which cannot be switched off");
+      return unmapped(
+          b, concat({"`", mate.path, "` is a joint of MuJoCo's body tree, which cannot be switched off"}));
     }
     b.quantity = Quantity::Constant;
     b.initial = 1.0;
     return;
   }
   if (!tree) {
-    return unmapped(b, "`" + mate.path +
-                           (mate.enabled ? "` closes a kinematic loop as an equality constraint"
-                                         : "` is disabled (`enabled: false`): an inactive equality "
-                                           "constraint") +
-                           ", which has no joint coordinate or force sensor");
+    return unmapped(
+        b, concat({"`", mate.path,
+                   mate.enabled ? "` closes a kinematic loop as an equality constraint"
+                                : "` is disabled (`enabled: false`): an inactive equality constraint",
+                   ", which has no joint coordinate or force sensor"}));
   }
   if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D", "Position1D", "LinearVelocity1D"})) {
     const bool rotational = any_of(stem, {"Angle", "AngularVelocity1D"});
     Element* joint = joint_for(m, rotational);
     if (!joint) {
-      return unmapped(
-          b, "`" + mate.path + "` has no " + (rotational ? "rotational" : "linear") + " joint coordinate");
+      return unmapped(b, concat({"`", mate.path, "` has no ", rotational ? "rotational" : "linear",
+                                 " joint coordinate"}));
     }
     const bool position = any_of(stem, {"Angle", "Position1D"});
     return mapped(b, position ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint,
@@ -357,7 +357,7 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
   }
   if (!b.input && any_of(stem, {"Force3D", "Torque3D"})) {
     auto found = child_of_mate_.find(m);
-    if (found == child_of_mate_.end()) return unmapped(b, "`" + mate.path + "` was not emitted");
+    if (found == child_of_mate_.end()) return unmapped(b, concat({"`", mate.path, "` was not emitted"}));
     const int child = found->second;
     const int side = vertex_of_connector(mate.connectors[1]) == child ? 1 : 0;
     mapped(b, stem == "Force3D" ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
@@ -365,12 +365,12 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
     b.sign = side == 1 ? 1.0 : -1.0;
     return;
   }
-  return unmapped(b, "`" + mate.path + "` has no MuJoCo element that carries it");
+  return unmapped(b, concat({"`", mate.path, "` has no MuJoCo element that carries it"}));
 }
 
 void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
-  const std::string body = name(view_.nodes[n].path);
-  if (!body_element_.count(n)) return unmapped(b, "`" + view_.nodes[n].path + "` was not emitted");
+  std::string body = name(view_.nodes[n].path);  // moved into the binding that names it
+  if (!body_element_.count(n)) return unmapped(b, concat({"`", view_.nodes[n].path, "` was not emitted"}));
   if (b.input) {
     const bool linear = stem == "LinearVelocity3D";
     if (!linear && stem != "AngularVelocity3D") return unmapped(b, "no MuJoCo input of a body");
@@ -383,14 +383,14 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
           system * (linear ? node.body.initial_linear_velocity : node.body.initial_angular_velocity);
       b.initial_vector = {v.x(), v.y(), v.z()};
       return mapped(b, linear ? Quantity::KinematicLinearVelocity : Quantity::KinematicAngularVelocity,
-                    MjObject::Body, body);
+                    MjObject::Body, std::move(body));
     }
     if (free_roots_.count(n)) {
       return mapped(b, linear ? Quantity::FreeLinearVelocity : Quantity::FreeAngularVelocity, MjObject::Joint,
-                    body);
+                    std::move(body));
     }
-    return unmapped(
-        b, "`" + view_.nodes[n].path + "` moves through its joints in MuJoCo; its velocity cannot be set");
+    return unmapped(b, concat({"`", view_.nodes[n].path,
+                               "` moves through its joints in MuJoCo; its velocity cannot be set"}));
   }
   const Quantity q = stem == "Position3D" || stem == "Position" ? Quantity::BodyPosition
                      : stem == "RPY"                            ? Quantity::BodyRPY
@@ -399,7 +399,7 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
                      : stem == "Acceleration3D"                 ? Quantity::BodyLinearAcceleration
                                                                 : Quantity::None;
   if (q == Quantity::None) return unmapped(b, "no MuJoCo quantity of a body matches it");
-  return mapped(b, q, MjObject::Body, body);
+  return mapped(b, q, MjObject::Body, std::move(body));
 }
 
 void Lowering::bind_connector(SignalBinding& b, std::string_view stem, int c) {

@@ -821,8 +821,16 @@ class SystemBuilder {
   // it).
   std::string path_of(fe::ObjectId id) {
     const fe::Object& obj = ev_.graph().at(id);
-    const std::string* owner = obj.owner == fe::kNoObject ? nullptr : rooted_path(obj.owner);
+    const std::string* owner = obj.owner == fe::kNoObject ? nullptr : owner_path(obj.owner);
     return owner ? joined_path(*owner, obj.name) : ev_.graph().path(id);
+  }
+
+  // rooted_path, the last owner's remembered: siblings (a body's signals) are visited in a row.
+  const std::string* owner_path(fe::ObjectId owner) {
+    if (owner == last_owner_ && last_owner_path_) return last_owner_path_;
+    const std::string* path = rooted_path(owner);
+    if (path) std::tie(last_owner_, last_owner_path_) = std::pair(owner, path);  // kept paths never move
+    return path;
   }
 
   // The path of the root or of an object below it, kept: an owned object keeps its owner and name, so its
@@ -1191,6 +1199,8 @@ class SystemBuilder {
   std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;
+  fe::ObjectId last_owner_ = fe::kNoObject;  // see owner_path
+  const std::string* last_owner_path_ = nullptr;
   std::unordered_map<fe::ObjectId, std::string> rooted_paths_;                       // see rooted_path
   std::unordered_map<fe::ObjectId, std::optional<fe::SourceRange>> declared_above_;  // see where_of
 };

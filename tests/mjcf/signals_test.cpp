@@ -365,14 +365,16 @@ TEST(Manifest, StringsAreEscapedAndNumbersShortest) {
 // it.
 TEST(Manifest, EscapesAtEveryPositionAsQuotedDoes) {
   for (const char special : {'"', '\\', '\n', '\t', '\r', '\x01', '\x1f', ' ', '\x7f', '\xc3'}) {
-    for (size_t at = 0; at < 19; ++at) {
-      mj::SignalBinding b;
-      b.path = std::string(19, 'a');
-      b.path[at] = special;
-      b.reason = b.path.substr(at);
-      const std::string json = mj::manifest_json("model", "p/", {b}, {});
-      EXPECT_NE(json.find("{\"path\": " + fe::quoted(b.path) + ", "), std::string::npos) << json;
-      EXPECT_NE(json.find("\"reason\": " + fe::quoted(b.reason) + ", "), std::string::npos) << json;
+    for (size_t size = 1; size <= 25; ++size) {
+      for (size_t at = 0; at < size; ++at) {
+        mj::SignalBinding b;
+        b.path = std::string(size, 'a');
+        b.path[at] = special;
+        b.reason = b.path.substr(at);
+        const std::string json = mj::manifest_json("model", "p/", {b}, {});
+        EXPECT_NE(json.find("{\"path\": " + fe::quoted(b.path) + ", "), std::string::npos) << json;
+        EXPECT_NE(json.find("\"reason\": " + fe::quoted(b.reason) + ", "), std::string::npos) << json;
+      }
     }
   }
 }
