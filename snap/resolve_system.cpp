@@ -791,6 +791,9 @@ class SystemBuilder {
     signal.source_path = path_of(source);
   }
   void build_source_index() {
+    sources_.reserve(view_.connectors.size() + view_.shafts.size() + view_.couplings.size() +
+                     view_.nodes.size() + view_.mates.size() + view_.interactions.size() +
+                     view_.lidars.size());  // no rehashing
     // Inserted in reverse priority, so an object that were two things would keep the first kind.
     auto add = [&](SignalSource kind, const auto& items, auto accept) {
       for (size_t k = 0; k < items.size(); ++k)
