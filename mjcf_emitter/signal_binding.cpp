@@ -307,6 +307,8 @@ class Cursor {
   }
   // Room: kNumberChars. Numbers JSON cannot hold are the strings "nan", "inf" and "-inf".
   Cursor& number(double value) {
+    if (value == 0.0) return text("0");  // most signs, initial values and ranges: no call (-0 too, as ever)
+    if (value == 1.0) return text("1");
     if (std::isnan(value)) return text("\"nan\"");
     if (std::isinf(value)) return value > 0 ? text("\"inf\"") : text("\"-inf\"");
     at_ = write_number(at_, value);
