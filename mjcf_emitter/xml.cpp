@@ -74,7 +74,7 @@ char* write_short_decimal(char* at, double value) {
     auto digits = static_cast<uint64_t>(scaled);
     const auto power = static_cast<uint64_t>(scale);
     if (value < 0) *at++ = '-';
-    at = std::to_chars(at, at + kNumberChars, digits / power).ptr;
+    at = std::to_chars(at, at + 4, digits / power).ptr;  // below 10^4
     *at++ = '.';
     digits %= power;
     for (size_t d = decimals; d-- > 0; digits /= 10) at[d] = static_cast<char>('0' + digits % 10);
