@@ -289,7 +289,7 @@ class Cursor {
     return *this;
   }
   Cursor& text(std::string_view s) {
-    std::memcpy(at_, s.data(), s.size());
+    if (!s.empty()) std::memcpy(at_, s.data(), s.size());  // an empty view may hold no pointer
     at_ += s.size();
     return *this;
   }
