@@ -52,17 +52,16 @@ void Lowering::emit_lidars() {
 }
 
 // A LidarOutput: every ray's distance, in ray order (-1 where nothing is hit).
-SignalBinding Lowering::bind_lidar(SignalBinding b, int k) {
+void Lowering::bind_lidar(SignalBinding& b, int k) {
   auto it = lidar_sensors_.find(k);
   if (b.input || it == lidar_sensors_.end())
-    return unmapped(std::move(b), "lidar `" + view_.lidars[k].path + "` has no rangefinders");
+    return unmapped(b, "lidar `" + view_.lidars[k].path + "` has no rangefinders");
   b.value = SignalValue::Vector;
   b.unit = "m";
   b.quantity = Quantity::SensorFields;
   b.object = MjObject::Sensor;
   b.names = it->second;
   b.initial_vector.assign(b.names.size(), 0.0);  // each rangefinder's single value
-  return b;
 }
 
 }  // namespace openplx::mjcf

@@ -69,20 +69,31 @@ class Lowering {
   static int index_in(const std::vector<T>& items, const T& item) {
     return static_cast<int>(&item - items.data());
   }
-  static SignalBinding unmapped(SignalBinding b, std::string reason) {
+  // Bindings are filled in place (bind_signals): a binding moved costs as much as one made.
+  static void unmapped(SignalBinding& b, std::string reason) {
     b.quantity = Quantity::None;
     b.reason = std::move(reason);
-    return b;
   }
-  static SignalBinding mapped(SignalBinding b, Quantity quantity, MjObject object, std::string element) {
+  static void mapped(SignalBinding& b, Quantity quantity, MjObject object, std::string element) {
     b.quantity = quantity;
     b.object = object;
     b.names.clear();
     b.names.push_back(std::move(element));  // moved: a braced list would copy it
-    return b;
+  }
+  // Text joined with one allocation (a reason for each of thousands of signals).
+  static std::string concat(std::initializer_list<std::string_view> parts) {
+    size_t size = 0;
+    for (std::string_view part : parts) size += part.size();
+    std::string text;
+    text.reserve(size);
+    for (std::string_view part : parts) text += part;
+    return text;
   }
   static bool any_of(std::string_view stem, std::initializer_list<std::string_view> stems) {
-    return std::find(stems.begin(), stems.end(), stem) != stems.end();
+    for (std::string_view s : stems) {  // a loop the compiler unrolls, where std::find is a call
+      if (s == stem) return true;
+    }
+    return false;
   }
 
   // ------------------------------------------------------------------------- emitter.cpp
@@ -151,7 +162,7 @@ class Lowering {
   void emit_lidars();                                             // lidar.cpp
   void emit_terrains();                                           // terrain.cpp
   void emit_tracks(Element& root);                                // tracks.cpp
-  SignalBinding bind_lidar(SignalBinding b, int lidar);
+  void bind_lidar(SignalBinding& b, int lidar);
   void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
   void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
                    std::map<Element*, double>& dampings);
@@ -183,16 +194,16 @@ class Lowering {
 
   // ---------------------------------------------------------------------------------- signals.cpp
   void bind_signals(Element& root, std::vector<SignalBinding>& out);
-  SignalBinding bind(const sn::Signal& s);
-  SignalBinding bind_imu(const sn::Signal& s);
-  SignalBinding bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts);
-  SignalBinding bind_interaction(SignalBinding b, std::string_view stem, int k);
-  SignalBinding bind_enabled(SignalBinding b, int k);
-  SignalBinding bind_coupling(SignalBinding b, std::string_view stem, int k);
-  std::optional<SignalBinding> bind_drive_part(SignalBinding b, std::string_view stem, int k);
-  SignalBinding bind_mate(SignalBinding b, std::string_view stem, int m);
-  SignalBinding bind_body(SignalBinding b, std::string_view stem, int n);
-  SignalBinding bind_connector(SignalBinding b, std::string_view stem, int c);
+  void bind(const sn::Signal& s, SignalBinding& b);
+  void bind_imu(const sn::Signal& s, SignalBinding& b);
+  void bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts, SignalBinding& b);
+  void bind_interaction(SignalBinding& b, std::string_view stem, int k);
+  void bind_enabled(SignalBinding& b, int k);
+  void bind_coupling(SignalBinding& b, std::string_view stem, int k);
+  bool bind_drive_part(SignalBinding& b, std::string_view stem, int k);
+  void bind_mate(SignalBinding& b, std::string_view stem, int m);
+  void bind_body(SignalBinding& b, std::string_view stem, int n);
+  void bind_connector(SignalBinding& b, std::string_view stem, int c);
   std::string site_for(int c);
   std::pair<Element*, sn::Transform> connector_mount(int c);
   void add_sensor(SignalBinding& b);
@@ -268,6 +279,7 @@ class Lowering {
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
+  SignalClasses signal_classes_;                                // keyed by the view's type names
   std::map<int, std::string> distance_tendons_;                 // DistanceRange/Motor -> its tendon
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
   struct SteeringElements {

@@ -1,17 +1,16 @@
 #include "mjcf_emitter/signal_binding.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <algorithm>
 #include <array>
 #include <utility>
 
-#include "frontend/quoted.h"
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::mjcf {
-
-using namespace std::string_view_literals;  // literals appended with their length known
 
 namespace {
 
@@ -246,26 +245,6 @@ double steering_polynomial_inverse(const std::vector<double>& c, double y) {
 
 namespace {
 
-// Appends a JSON number; numbers JSON cannot hold are the strings "nan", "inf" and "-inf".
-void append_json_number(std::string& out, double value) {
-  if (std::isnan(value)) {
-    out += "\"nan\""sv;
-  } else if (std::isinf(value)) {
-    out += value > 0 ? "\"inf\""sv : "\"-inf\""sv;
-  } else {
-    append_number(out, value);
-  }
-}
-
-void append_numbers(std::string& out, const char* key, const std::vector<double>& values) {
-  ((out += ", \""sv) += key) += "\": ["sv;
-  for (size_t k = 0; k < values.size(); ++k) {
-    if (k) out += ", "sv;
-    append_json_number(out, values[k]);
-  }
-  out += ']';
-}
-
 // The characters frontend::append_quoted escapes, as a table: one load per character scanned.
 constexpr std::array<bool, 256> kEscaped = [] {
   std::array<bool, 256> table{};
@@ -273,18 +252,169 @@ constexpr std::array<bool, 256> kEscaped = [] {
   return table;
 }();
 
-bool needs_escape(char c) {
-  return kEscaped[static_cast<unsigned char>(c)];
+// Whether `text` has nothing to escape, eight bytes at a time (names and paths rarely have anything), the
+// last eight overlapping the others. A word with a byte below 0x20 also fails, which only sends it through
+// the exact escaping loop.
+bool plain(std::string_view text) {
+  if (text.size() < 8) {
+    for (char c : text) {
+      if (kEscaped[static_cast<unsigned char>(c)]) return false;
+    }
+    return true;
+  }
+  constexpr uint64_t kOnes = 0x0101010101010101, kHigh = 0x8080808080808080;
+  auto has_zero = [](uint64_t x) { return (x - kOnes) & ~x & kHigh; };
+  auto special = [&](size_t at) {
+    uint64_t x;
+    std::memcpy(&x, text.data() + at, 8);
+    return ((x - kOnes * 0x20) & ~x & kHigh) | has_zero(x ^ (kOnes * '"')) | has_zero(x ^ (kOnes * '\\'));
+  };
+  for (size_t k = 0; k + 8 < text.size(); k += 8) {
+    if (special(k)) return false;
+  }
+  return !special(text.size() - 8);
 }
 
-// A JSON string as frontend::append_quoted writes it; names and paths rarely hold anything to escape, so
-// those are copied whole after one plain scan.
-void append_string(std::string& out, std::string_view text) {
-  if (std::any_of(text.begin(), text.end(), needs_escape)) {
-    frontend::append_quoted(out, text);
-    return;
+// Writes the manifest into room made ahead (room_for), so fixed text is a copy of known length and nothing
+// checks capacity piece by piece (a large model has tens of thousands of signals).
+class Cursor {
+ public:
+  explicit Cursor(char* at) : at_(at) {}
+  char* end() const { return at_; }
+
+  template <size_t N>
+  Cursor& text(const char (&literal)[N]) {
+    std::memcpy(at_, literal, N - 1);
+    at_ += N - 1;
+    return *this;
   }
-  ((out += '"') += text) += '"';
+  Cursor& text(std::string_view s) {
+    if (!s.empty()) std::memcpy(at_, s.data(), s.size());  // an empty view may hold no pointer
+    at_ += s.size();
+    return *this;
+  }
+  Cursor& boolean(bool value) { return value ? text("true") : text("false"); }
+  // A JSON string as frontend::append_quoted writes it. Room: twice its length and the quotes.
+  Cursor& string(std::string_view s) {
+    *at_++ = '"';
+    if (plain(s)) {
+      text(s);
+    } else {
+      for (char c : s) escape(c);
+    }
+    *at_++ = '"';
+    return *this;
+  }
+  // Room: kNumberChars. Numbers JSON cannot hold are the strings "nan", "inf" and "-inf".
+  Cursor& number(double value) {
+    if (value == 0.0) return text("0");  // most signs, initial values and ranges: no call (-0 too, as ever)
+    if (value == 1.0) return text("1");
+    if (std::isnan(value)) return text("\"nan\"");
+    if (std::isinf(value)) return value > 0 ? text("\"inf\"") : text("\"-inf\"");
+    at_ = write_number(at_, value);
+    return *this;
+  }
+  Cursor& numbers(const std::vector<double>& values) {
+    *at_++ = '[';
+    for (size_t k = 0; k < values.size(); ++k) {
+      if (k) text(", ");
+      number(values[k]);
+    }
+    *at_++ = ']';
+    return *this;
+  }
+  Cursor& strings(const std::vector<std::string>& values) {
+    *at_++ = '[';
+    for (size_t k = 0; k < values.size(); ++k) {
+      if (k) text(", ");
+      string(values[k]);
+    }
+    *at_++ = ']';
+    return *this;
+  }
+
+ private:
+  void escape(char c) {
+    switch (c) {
+      case '"':
+        text("\\\"");
+        break;
+      case '\\':
+        text("\\\\");
+        break;
+      case '\n':
+        text("\\n");
+        break;
+      case '\t':
+        text("\\t");
+        break;
+      case '\r':
+        text("\\r");
+        break;
+      default:
+        *at_++ = c;
+    }
+  }
+
+  char* at_;
+};
+
+// Room for what Cursor writes: fixed text and enumerations (under 400 characters), strings escaped (twice
+// their length, quoted and separated), numbers.
+constexpr size_t kFixedRoom = 512;
+size_t string_room(std::string_view s) {
+  return 2 * s.size() + 4;
+}
+size_t strings_room(const std::vector<std::string>& values) {
+  size_t room = 2;
+  for (const std::string& value : values) room += string_room(value);
+  return room;
+}
+size_t numbers_room(const std::vector<double>& values) {
+  return 2 + values.size() * (kNumberChars + 2);
+}
+
+size_t room_for(const SignalBinding& b) {
+  return kFixedRoom + 4 * kNumberChars + string_room(b.path) + string_room(b.type) + string_room(b.unit) +
+         strings_room(b.names) + string_room(b.sensor) + numbers_room(b.initial_vector) +
+         string_room(b.reason);
+}
+
+size_t room_for(const RuntimeLaw& law) {
+  return kFixedRoom + kNumberChars + string_room(law.path) + strings_room(law.actuators) +
+         numbers_room(law.curve_x) + numbers_room(law.curve_y) + numbers_room(law.curve2_x) +
+         numbers_room(law.curve2_y);
+}
+
+void write_binding(Cursor& out, const SignalBinding& b) {
+  out.text("{\"path\": ").string(b.path);
+  if (b.input) {
+    out.text(", \"direction\": \"input\", \"type\": ");
+  } else {
+    out.text(", \"direction\": \"output\", \"type\": ");
+  }
+  out.string(b.type).text(", \"value\": \"").text(to_string(b.value)).text("\", \"unit\": ").string(b.unit);
+  if (b.enabled) {
+    out.text(", \"enabled\": true, \"quantity\": \"");
+  } else {
+    out.text(", \"enabled\": false, \"quantity\": \"");
+  }
+  out.text(to_string(b.quantity)).text("\", \"object\": \"").text(to_string(b.object));
+  out.text("\", \"names\": ").strings(b.names).text(", \"sensor\": ").string(b.sensor);
+  out.text(", \"sign\": ").number(b.sign).text(", \"initial\": ").number(b.initial);
+  out.text(", \"initial_vector\": ").numbers(b.initial_vector);
+  out.text(", \"low\": ").number(b.low).text(", \"high\": ").number(b.high);
+  out.text(", \"reason\": ").string(b.reason).text(", \"runtime\": ").boolean(b.runtime).text("}");
+}
+
+void write_law(Cursor& out, const RuntimeLaw& law) {
+  out.text(law.kind == RuntimeLaw::Kind::Engine
+               ? std::string_view("{\"kind\": \"engine\", \"path\": ")
+               : std::string_view("{\"kind\": \"torque_converter\", \"path\": "));
+  out.string(law.path).text(", \"actuators\": ").strings(law.actuators);
+  out.text(", \"curve_x\": ").numbers(law.curve_x).text(", \"curve_y\": ").numbers(law.curve_y);
+  out.text(", \"curve2_x\": ").numbers(law.curve2_x).text(", \"curve2_y\": ").numbers(law.curve2_y);
+  out.text(", \"parameter\": ").number(law.parameter).text("}");
 }
 
 }  // namespace
@@ -300,80 +430,44 @@ std::string manifest_json(std::string_view model_name, std::string_view prefix,
 void write_manifest_json(std::string_view model_name, std::string_view prefix,
                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
                          const std::function<void(std::string_view)>& write) {
-  // Appended in place (a large model has tens of thousands of signals) and handed on in pieces, so a file
-  // written from it never holds the whole text in memory.
+  // Written in place and handed on in pieces, so a file written from it never holds the whole text in memory.
   constexpr size_t kPiece = 64 << 10;
-  std::string out;
-  out.reserve(kPiece + 4096);
-  auto hand_on = [&](size_t at_least) {
-    if (out.size() < at_least) return;
-    write(out);
-    out.clear();
+  std::string buffer(kPiece + 8192, '\0');
+  size_t used = 0;
+  auto cursor = [&](size_t room) {
+    if (used + room > buffer.size()) buffer.resize(used + room);
+    return Cursor(buffer.data() + used);
   };
-  out += "{\n  \"model\": "sv;
-  append_string(out, model_name);
-  out += ",\n  \"prefix\": "sv;
-  append_string(out, prefix);
-  out += ",\n  \"signals\": ["sv;
-  bool first = true;
-  for (const SignalBinding& b : bindings) {
-    out += first ? "\n    {\"path\": "sv : ",\n    {\"path\": "sv;
-    first = false;
-    append_string(out, b.path);
-    (out += ", \"direction\": \""sv) += b.input ? "input"sv : "output"sv;
-    out += "\", \"type\": "sv;
-    append_string(out, b.type);
-    ((out += ", \"value\": \""sv) += to_string(b.value)) += "\", \"unit\": "sv;
-    append_string(out, b.unit);
-    (out += ", \"enabled\": "sv) += b.enabled ? "true"sv : "false"sv;
-    ((out += ", \"quantity\": \""sv) += to_string(b.quantity)) += "\", \"object\": \""sv;
-    (out += to_string(b.object)) += "\", \"names\": ["sv;
-    for (size_t k = 0; k < b.names.size(); ++k) {
-      if (k) out += ", "sv;
-      append_string(out, b.names[k]);
-    }
-    out += "], \"sensor\": "sv;
-    append_string(out, b.sensor);
-    out += ", \"sign\": "sv;
-    append_json_number(out, b.sign);
-    out += ", \"initial\": "sv;
-    append_json_number(out, b.initial);
-    append_numbers(out, "initial_vector", b.initial_vector);
-    out += ", \"low\": "sv;
-    append_json_number(out, b.low);
-    out += ", \"high\": "sv;
-    append_json_number(out, b.high);
-    out += ", \"reason\": "sv;
-    append_string(out, b.reason);
-    (out += ", \"runtime\": "sv) += b.runtime ? "true"sv : "false"sv;
-    out += '}';
-    hand_on(kPiece);
+  auto done = [&](const Cursor& out, size_t hand_on_at) {
+    used = static_cast<size_t>(out.end() - buffer.data());
+    if (used < hand_on_at) return;
+    write(std::string_view(buffer.data(), used));
+    used = 0;
+  };
+  Cursor head = cursor(kFixedRoom + string_room(model_name) + string_room(prefix));
+  head.text("{\n  \"model\": ").string(model_name).text(",\n  \"prefix\": ").string(prefix);
+  head.text(",\n  \"signals\": [");
+  done(head, kPiece);
+  for (size_t k = 0; k < bindings.size(); ++k) {
+    Cursor out = cursor(room_for(bindings[k]));
+    if (k) out.text(",");
+    out.text("\n    ");
+    write_binding(out, bindings[k]);
+    done(out, kPiece);
   }
-  out += "\n  ],\n  \"laws\": ["sv;
-  first = true;
-  for (const RuntimeLaw& law : laws) {
-    out += first ? "\n    {\"kind\": \""sv : ",\n    {\"kind\": \""sv;
-    first = false;
-    out += law.kind == RuntimeLaw::Kind::Engine ? "engine"sv : "torque_converter"sv;
-    out += "\", \"path\": "sv;
-    append_string(out, law.path);
-    out += ", \"actuators\": ["sv;
-    for (size_t k = 0; k < law.actuators.size(); ++k) {
-      if (k) out += ", "sv;
-      append_string(out, law.actuators[k]);
-    }
-    out += ']';
-    append_numbers(out, "curve_x", law.curve_x);
-    append_numbers(out, "curve_y", law.curve_y);
-    append_numbers(out, "curve2_x", law.curve2_x);
-    append_numbers(out, "curve2_y", law.curve2_y);
-    out += ", \"parameter\": "sv;
-    append_json_number(out, law.parameter);
-    out += '}';
-    hand_on(kPiece);
+  Cursor middle = cursor(kFixedRoom);
+  middle.text("\n  ],\n  \"laws\": [");
+  done(middle, kPiece);
+  for (size_t k = 0; k < laws.size(); ++k) {
+    Cursor out = cursor(room_for(laws[k]));
+    if (k) out.text(",");
+    out.text("\n    ");
+    write_law(out, laws[k]);
+    done(out, kPiece);
   }
-  out += "\n  ]\n}\n"sv;
-  hand_on(0);
+  Cursor tail = cursor(kFixedRoom);
+  tail.text("\n  ]\n}\n");
+  done(tail, 0);
 }
 
 }  // namespace openplx::mjcf

@@ -9,6 +9,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace openplx::mjcf {
@@ -161,11 +162,40 @@ struct RuntimeLaw {
 // The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").
 struct SignalKind {
   SignalValue value = SignalValue::Real;
-  std::string unit;
+  std::string_view unit;  // a literal
 };
 SignalKind signal_kind(std::string_view type);
 // A signal model's name without namespace and Input/Output ending: "Physics.Signals.AngleOutput" -> "Angle".
 std::string_view signal_stem(std::string_view type);
+
+// signal_kind and signal_stem worked out once per model name: a large model has thousands of signals of a
+// few models. A name is known by where it is held, not by its text: the view's are its models' names, each
+// held once by the program, so a model is classified once and no name is hashed; an equal name held
+// elsewhere is classified again, alike. Names must outlive this.
+class SignalClasses {
+ public:
+  struct Class {
+    SignalKind kind;
+    std::string_view stem;  // in the name
+  };
+  const Class& of(std::string_view type) {
+    auto [it, fresh] = classes_.try_emplace(type);
+    if (fresh) it->second = {signal_kind(type), signal_stem(type)};
+    return it->second;
+  }
+  size_t size() const { return classes_.size(); }
+
+ private:
+  struct Where {
+    size_t operator()(std::string_view s) const { return std::hash<const char*>{}(s.data()) ^ s.size(); }
+  };
+  struct Same {
+    bool operator()(std::string_view a, std::string_view b) const {
+      return a.data() == b.data() && a.size() == b.size();
+    }
+  };
+  std::unordered_map<std::string_view, Class, Where, Same> classes_;
+};
 
 std::string_view to_string(SignalValue value);
 std::string_view to_string(MjObject object);

@@ -5,14 +5,12 @@
 namespace openplx::mjcf {
 
 namespace {
-// A binding that knows only its signal: path, direction, type and enabled flag.
-SignalBinding binding_of(const sn::Signal& s) {
-  SignalBinding b;
+// What a binding knows of its signal alone: path, direction, type and enabled flag.
+void identify(SignalBinding& b, const sn::Signal& s) {
   b.path = s.path;
   b.input = s.input;
   b.type = s.type;
   b.enabled = s.enabled;
-  return b;
 }
 }  // namespace
 
@@ -22,17 +20,29 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   sensors_ = &root.add("sensor");
   emit_lidars();
   out.reserve(out.size() + view_.signals.size());
-  for (const sn::Signal& s : view_.signals)
-    out.push_back(s.composite ? SignalBinding{} : s.imu ? bind_imu(s) : bind(s));
+  for (const sn::Signal& s : view_.signals) {  // each binding made in place, never moved
+    SignalBinding& b = out.emplace_back();
+    if (s.composite) continue;
+    identify(b, s);
+    if (s.imu) {
+      bind_imu(s, b);
+    } else {
+      bind(s, b);
+    }
+  }
   // Composites after their parts.
   for (size_t k = 0; k < view_.signals.size(); ++k) {
-    if (view_.signals[k].composite) out[k] = bind_composite(view_.signals[k], out);
+    if (!view_.signals[k].composite) continue;
+    SignalBinding b;  // apart from `out` until done: it reads its parts there
+    identify(b, view_.signals[k]);
+    bind_composite(view_.signals[k], out, b);
+    out[k] = std::move(b);
   }
   for (size_t k = 0; k < view_.signals.size(); ++k) {
     const sn::Signal& s = view_.signals[k];
     SignalBinding& b = out[k];
     if ((!b.input || s.composite) && b.enabled && b.quantity == Quantity::None) {
-      warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + s.type +
+      warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + b.type +
                         ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
     }
     if (!b.input && b.enabled && !s.composite && !s.imu) add_sensor(b);
@@ -42,16 +52,15 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
 // An IMU output: each field an axis of an accelerometer, gyroscope or magnetometer, which become MuJoCo's
 // sensors of those kinds at a site on the sensor's connector (its axes: x normal, y cross, z main axis). An
 // accelerometer reads proper acceleration (gravity included), as a real one does.
-SignalBinding Lowering::bind_imu(const sn::Signal& s) {
-  SignalBinding b = binding_of(s);
+void Lowering::bind_imu(const sn::Signal& s, SignalBinding& b) {
   b.value = SignalValue::Vector;
   using Kind = sn::Signal::SensorField::Kind;
   for (const sn::Signal::SensorField& f : s.sensor_fields) {
     if (f.kind == Kind::Unknown || f.connector < 0 || f.axis < 0 || f.axis > 2) {
-      return unmapped(std::move(b), f.kind == Kind::Unknown ? "a field's sensor is not an accelerometer, "
-                                                              "gyroscope or magnetometer"
-                                    : f.connector < 0 ? "a field's sensor has no mate_connector_attachment"
-                                                      : "a field is not X, Y or Z");
+      return unmapped(b, f.kind == Kind::Unknown ? "a field's sensor is not an accelerometer, "
+                                                   "gyroscope or magnetometer"
+                         : f.connector < 0       ? "a field's sensor has no mate_connector_attachment"
+                                                 : "a field is not X, Y or Z");
     }
     const std::string sensor = name(f.sensor_path);
     if (imu_sensors_.insert(sensor).second) {
@@ -67,13 +76,13 @@ SignalBinding Lowering::bind_imu(const sn::Signal& s) {
   }
   b.quantity = Quantity::SensorFields;
   b.object = MjObject::Sensor;
-  return b;
+  return;
 }
 
 // A RobotInput or RobotOutput: its parts' paths in order. An input's parts must be scalar inputs (one value
 // each); an output's parts any outputs. Sensors (members unpublished) are not composed.
-SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts) {
-  SignalBinding b = binding_of(s);
+void Lowering::bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts,
+                              SignalBinding& b) {
   b.value = SignalValue::Vector;
   if (s.sensors > 0) {
     warn(s.where, "`" + s.path +
@@ -81,21 +90,20 @@ SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<Si
                       "output composes its joint and object sources only");
   }
   for (int p : s.parts) {
-    if (p < 0) return unmapped(std::move(b), "one of its parts is not a signal of this model");
+    if (p < 0) return unmapped(b, "one of its parts is not a signal of this model");
     const SignalBinding& part = parts[static_cast<size_t>(p)];
     if (part.quantity == Quantity::None || part.quantity == Quantity::Composite)
-      return unmapped(std::move(b), "its part `" + part.path + "` is not mapped: " + part.reason);
+      return unmapped(b, "its part `" + part.path + "` is not mapped: " + part.reason);
     if (part.input != s.input)
-      return unmapped(std::move(b),
-                      "its part `" + part.path + "` is an " + (part.input ? "input" : "output"));
+      return unmapped(b, "its part `" + part.path + "` is an " + (part.input ? "input" : "output"));
     const bool scalar =
         part.value == SignalValue::Real || part.value == SignalValue::Bool || part.value == SignalValue::Int;
     const bool vector_input = s.input && s.composition == sn::Signal::Composition::Vector;
     if ((vector_input || s.composition == sn::Signal::Composition::Affine) && !scalar)
-      return unmapped(std::move(b), "its part `" + part.path + "` is not one number");
+      return unmapped(b, "its part `" + part.path + "` is not one number");
     if (s.composition == sn::Signal::Composition::Broadcast && !b.names.empty() &&
         part.value != parts[static_cast<size_t>(s.parts.front())].value)
-      return unmapped(std::move(b), "its targets take different kinds of values");
+      return unmapped(b, "its targets take different kinds of values");
     b.names.push_back(part.path);
   }
   switch (s.composition) {
@@ -103,272 +111,269 @@ SignalBinding Lowering::bind_composite(const sn::Signal& s, const std::vector<Si
       b.quantity = Quantity::Composite;
       break;
     case sn::Signal::Composition::Broadcast:
-      if (s.parts.empty()) return unmapped(std::move(b), "it has no targets");
+      if (s.parts.empty()) return unmapped(b, "it has no targets");
       b.quantity = Quantity::Broadcast;
       b.value = parts[static_cast<size_t>(s.parts.front())].value;
       break;
     case sn::Signal::Composition::Affine:
-      if (s.parts.size() != 1) return unmapped(std::move(b), "it has no target or source signal");
+      if (s.parts.size() != 1) return unmapped(b, "it has no target or source signal");
       b.quantity = Quantity::Affine;
       b.value = SignalValue::Real;
       b.low = s.scale;
       b.high = s.offset;
       break;
   }
-  return b;
+  return;
 }
 
-SignalBinding Lowering::bind(const sn::Signal& s) {
-  SignalBinding b = binding_of(s);
-  const SignalKind kind = signal_kind(s.type);
-  b.value = kind.value;
-  b.unit = kind.unit;
-  const std::string_view stem = signal_stem(s.type);
+void Lowering::bind(const sn::Signal& s, SignalBinding& b) {
+  const SignalClasses::Class& type = signal_classes_.of(s.type);
+  b.value = type.kind.value;
+  b.unit = type.kind.unit;
+  const std::string_view stem = type.stem;
   using Source = sn::SignalSource;
   switch (s.source_kind) {
     case Source::None:
-      return unmapped(std::move(b), "it has no source");
+      return unmapped(b, "it has no source");
     case Source::Interaction:
-      return bind_interaction(std::move(b), stem, s.source);
+      return bind_interaction(b, stem, s.source);
     case Source::Mate:
-      return bind_mate(std::move(b), stem, s.source);
+      return bind_mate(b, stem, s.source);
     case Source::Body:
-      return bind_body(std::move(b), stem, s.source);
+      return bind_body(b, stem, s.source);
     case Source::Shaft:
       if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D"})) {
-        return mapped(std::move(b), stem == "Angle" ? Quantity::JointPosition : Quantity::JointVelocity,
-                      MjObject::Joint, shaft_joints_[s.source]);
+        return mapped(b, stem == "Angle" ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint,
+                      shaft_joints_[s.source]);
       }
       break;
     case Source::Connector:
-      return bind_connector(std::move(b), stem, s.source);
+      return bind_connector(b, stem, s.source);
     case Source::Coupling:
       if (stem == "RelativeVelocity1D") b.unit = "rad/s";  // drivetrain parts join rotating shafts
-      return bind_coupling(std::move(b), stem, s.source);
+      return bind_coupling(b, stem, s.source);
     case Source::Lidar:
-      return bind_lidar(std::move(b), s.source);
+      return bind_lidar(b, s.source);
     case Source::Other:
       break;
   }
-  return unmapped(std::move(b),
-                  "its source `" +
-                      (s.source_kind == Source::Shaft ? view_.shafts[s.source].path : s.source_path) +
-                      "` has no MuJoCo element");
+  return unmapped(b, "its source `" +
+                         (s.source_kind == Source::Shaft ? view_.shafts[s.source].path : s.source_path) +
+                         "` has no MuJoCo element");
 }
 
-SignalBinding Lowering::bind_interaction(SignalBinding b, std::string_view stem, int k) {
+void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
   if (auto range = distance_tendons_.find(k); range != distance_tendons_.end()) {
     const bool motor = i.kind == sn::Interaction1D::Kind::DistanceMotor;
     if (stem == "Position1D" && !b.input)
-      return mapped(std::move(b), Quantity::TendonLength, MjObject::Tendon, range->second);
+      return mapped(b, Quantity::TendonLength, MjObject::Tendon, range->second);
     if (stem == "Force1D" && !b.input && !motor)
-      return mapped(std::move(b), Quantity::TendonLimitForce, MjObject::Tendon, range->second);
+      return mapped(b, Quantity::TendonLimitForce, MjObject::Tendon, range->second);
     if (stem == "LinearVelocity1D" && motor) {  // the servo's target, also readable
       b.initial = actuator_ctrl_.at(k).second;
-      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, name(i.path));
+      return mapped(b, Quantity::Ctrl, MjObject::Actuator, name(i.path));
     }
   }
   if (auto steering = steering_.find(k); steering != steering_.end() && stem == "Angle") {
     // The left wheel's steering angle, held by the angle equality, or the input through its polynomial.
     b.initial_vector = steering->second.input_polynomial;
     if (b.input) {
-      return mapped(std::move(b), Quantity::EqualityTarget, MjObject::Equality,
-                    steering->second.angle_equality);
+      return mapped(b, Quantity::EqualityTarget, MjObject::Equality, steering->second.angle_equality);
     }
-    return mapped(std::move(b), Quantity::JointPosition, MjObject::Joint, steering->second.left_joint);
+    return mapped(b, Quantity::JointPosition, MjObject::Joint, steering->second.left_joint);
   }
-  if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) return bind_enabled(std::move(b), k);
+  if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) return bind_enabled(b, k);
   const bool effort = any_of(stem, {"Torque1D", "Force1D"});
   const bool range = any_of(stem, {"TorqueRange", "ForceRange"});
   const std::string element = name(i.path);
   if (auto v = velocity_motors_.find(k); v != velocity_motors_.end()) {
-    if (range) return mapped(std::move(b), Quantity::MotorForceRange, MjObject::Tendon, v->second);
-    if (effort && !b.input) return mapped(std::move(b), Quantity::MotorForce, MjObject::Tendon, v->second);
+    if (range) return mapped(b, Quantity::MotorForceRange, MjObject::Tendon, v->second);
+    if (effort && !b.input) return mapped(b, Quantity::MotorForce, MjObject::Tendon, v->second);
     if (any_of(stem, {"AngularVelocity1D", "LinearVelocity1D"})) {  // the target, also readable
       b.initial = actuator_ctrl_.at(k).second;
-      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, element);
+      return mapped(b, Quantity::Ctrl, MjObject::Actuator, element);
     }
   } else if (auto sp = springs_.find(k); sp != springs_.end()) {
     if (any_of(stem, {"Angle", "Position1D"})) {  // the rest, also readable
       b.initial = actuator_ctrl_.at(k).second;
-      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, sp->second);
+      return mapped(b, Quantity::Ctrl, MjObject::Actuator, sp->second);
     }
-    if (effort && !b.input)
-      return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, sp->second);
+    if (effort && !b.input) return mapped(b, Quantity::ActuatorForce, MjObject::Actuator, sp->second);
   } else if (auto a = actuator_ctrl_.find(k); a != actuator_ctrl_.end()) {  // a force or torque motor
-    if (range) return mapped(std::move(b), Quantity::ForceRange, MjObject::Actuator, element);
-    if (effort && !b.input) return mapped(std::move(b), Quantity::ActuatorForce, MjObject::Actuator, element);
+    if (range) return mapped(b, Quantity::ForceRange, MjObject::Actuator, element);
+    if (effort && !b.input) return mapped(b, Quantity::ActuatorForce, MjObject::Actuator, element);
     if (effort) {
       b.initial = a->second.second;
-      return mapped(std::move(b), Quantity::Ctrl, MjObject::Actuator, element);
+      return mapped(b, Quantity::Ctrl, MjObject::Actuator, element);
     }
   }
   if (auto r = range_joints_.find(k); r != range_joints_.end() && !b.input) {
     if (any_of(stem, {"Angle", "Position1D"}))
-      return mapped(std::move(b), Quantity::JointPosition, MjObject::Joint, r->second);
-    if (effort) return mapped(std::move(b), Quantity::JointLimitForce, MjObject::Joint, r->second);
+      return mapped(b, Quantity::JointPosition, MjObject::Joint, r->second);
+    if (effort) return mapped(b, Quantity::JointLimitForce, MjObject::Joint, r->second);
   }
-  return unmapped(std::move(b), "`" + i.path + "` has no MuJoCo element that carries it");
+  return unmapped(b, concat({"`", i.path, "` has no MuJoCo element that carries it"}));
 }
 
 // The enabled state of a motor, spring or range: what the runtime zeroes to switch it off, and the effort
 // range (a range's limits) it restores.
-SignalBinding Lowering::bind_enabled(SignalBinding b, int k) {
+void Lowering::bind_enabled(SignalBinding& b, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
   b.initial = i.enabled ? 1.0 : 0.0;
   if (auto e = effort_ranges_.find(k); e != effort_ranges_.end()) {
     auto v = velocity_motors_.find(k);
-    b = v != velocity_motors_.end()
-            ? mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Tendon, v->second)
-            : mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Actuator, name(i.path));
+    if (v != velocity_motors_.end()) {
+      mapped(b, Quantity::InteractionEnabled, MjObject::Tendon, v->second);
+    } else {
+      mapped(b, Quantity::InteractionEnabled, MjObject::Actuator, name(i.path));
+    }
     std::tie(b.low, b.high) = e->second;
-    return b;
+    return;
   }
   if (auto r = range_joints_.find(k); r != range_joints_.end()) {
     const auto shared = std::count_if(range_joints_.begin(), range_joints_.end(),
                                       [&](const auto& other) { return other.second == r->second; });
     if (shared > 1) {
-      return unmapped(std::move(b), "`" + i.path + "` shares joint " + r->second +
-                                        " with other ranges; MuJoCo has one limit per joint, so one range "
-                                        "cannot be switched alone");
+      return unmapped(b, concat({"`", i.path, "` shares joint ", r->second,
+                                 " with other ranges; MuJoCo has one limit per joint, so one range "
+                                 "cannot be switched alone"}));
     }
-    b = mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Joint, r->second);
+    mapped(b, Quantity::InteractionEnabled, MjObject::Joint, r->second);
     b.low = i.start;
     b.high = i.end;
-    return b;
+    return;
   }
   if (auto t = distance_tendons_.find(k); t != distance_tendons_.end()) {
-    return unmapped(std::move(b), "`" + i.path + "` is the length limit of MuJoCo tendon " + t->second +
-                                      ", which the runtime does not switch on and off");
+    return unmapped(b, concat({"`", i.path, "` is the length limit of MuJoCo tendon ", t->second,
+                               ", which the runtime does not switch on and off"}));
   }
-  return unmapped(std::move(b), "`" + i.path + "` was not emitted");
+  return unmapped(b, concat({"`", i.path, "` was not emitted"}));
 }
 
 // A drivetrain part's signals: gears' torques and ratios, clutches' and brakes' torque (the friction row's
 // force), slip velocity and engagement; the rest in bind_drive_part.
-SignalBinding Lowering::bind_coupling(SignalBinding b, std::string_view stem, int k) {
+void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
   const sn::DriveCoupling& c = view_.couplings[k];
-  if (std::optional<SignalBinding> part = bind_drive_part(b, stem, k)) return std::move(*part);
+  if (bind_drive_part(b, stem, k)) return;
   if (auto gear = gear_equalities_.find(k); gear != gear_equalities_.end()) {
     if (stem == "Torque1D" && !b.input)  // the torque the equality puts on the output shaft
-      return mapped(std::move(b), Quantity::EqualityForce, MjObject::Equality, gear->second);
+      return mapped(b, Quantity::EqualityForce, MjObject::Equality, gear->second);
     if (stem == "Fraction") {
       b.initial = c.ratio;
-      return mapped(std::move(b), Quantity::GearRatio, MjObject::Equality, gear->second);
+      return mapped(b, Quantity::GearRatio, MjObject::Equality, gear->second);
     }
   }
   auto tendon = friction_couplings_.find(k);
   if (tendon == friction_couplings_.end())
-    return unmapped(std::move(b), "`" + c.path + "` has no MuJoCo element that carries it");
+    return unmapped(b, concat({"`", c.path, "` has no MuJoCo element that carries it"}));
   if (stem == "Torque1D" && !b.input)
-    return mapped(std::move(b), Quantity::MotorForce, MjObject::Tendon, tendon->second);
+    return mapped(b, Quantity::MotorForce, MjObject::Tendon, tendon->second);
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {  // off: no friction at all
-    b = mapped(std::move(b), Quantity::InteractionEnabled, MjObject::Tendon, tendon->second);
+    mapped(b, Quantity::InteractionEnabled, MjObject::Tendon, tendon->second);
     b.initial = 1.0;
     const double band =
         c.torque_capacity *
         std::clamp(c.automatic ? (c.initially_engaged ? 1.0 : 0.0) : c.engagement_fraction, 0.0, 1.0);
     std::tie(b.low, b.high) = std::pair(-band, band);
-    return b;
+    return;
   }
   if (stem == "RelativeVelocity1D" && !b.input)
-    return mapped(std::move(b), Quantity::TendonVelocity, MjObject::Tendon, tendon->second);
+    return mapped(b, Quantity::TendonVelocity, MjObject::Tendon, tendon->second);
   if (stem == "Fraction" && (!c.automatic || !b.input)) {  // an automatic one ramps its own
-    b = mapped(std::move(b), Quantity::EngagementFraction, MjObject::Tendon, tendon->second);
+    mapped(b, Quantity::EngagementFraction, MjObject::Tendon, tendon->second);
     b.initial = c.engagement_fraction;
     b.high = c.torque_capacity;
-    return b;
+    return;
   }
   if (any_of(stem, {"Engage", "Engaged"}) && c.automatic) {
-    b = mapped(std::move(b), Quantity::Engaged, MjObject::Tendon, tendon->second);
+    mapped(b, Quantity::Engaged, MjObject::Tendon, tendon->second);
     b.runtime = true;  // the ramp
     b.initial = c.initially_engaged ? 1.0 : 0.0;
     b.low = c.engagement_duration;
     b.high = c.disengagement_duration;
     b.initial_vector = {c.torque_capacity};
-    return b;
+    return;
   }
   if (c.automatic && stem.ends_with("Duration")) {  // which one: the attribute's name says
     const bool disengage = b.path.find(".disengagement_duration_") != std::string::npos;
-    b = mapped(std::move(b), disengage ? Quantity::DisengageDuration : Quantity::EngageDuration,
-               MjObject::Tendon, tendon->second);
+    mapped(b, disengage ? Quantity::DisengageDuration : Quantity::EngageDuration, MjObject::Tendon,
+           tendon->second);
     b.runtime = true;
     b.initial = disengage ? c.disengagement_duration : c.engagement_duration;
-    return b;
+    return;
   }
-  return unmapped(std::move(b), "`" + c.path + "`'s " + std::string(stem) + " signal is not mapped yet");
+  return unmapped(b, concat({"`", c.path, "`'s ", stem, " signal is not mapped yet"}));
 }
 
-SignalBinding Lowering::bind_mate(SignalBinding b, std::string_view stem, int m) {
+void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
   const sn::Mate& mate = view_.mates[m];
   if (auto distance = distance_mates_.find(m);
       distance != distance_mates_.end() && stem != "EnableInteraction" && stem != "InteractionEnabled") {
     if (stem == "Position1D" && b.path.find(".target_distance_") != std::string::npos) {
-      b = mapped(std::move(b), Quantity::DistanceTarget, MjObject::Equality, distance->second);
+      mapped(b, Quantity::DistanceTarget, MjObject::Equality, distance->second);
       b.initial = mate.target_distance;
-      return b;
+      return;
     }
     if (stem == "Position1D" && !b.input)
-      return mapped(std::move(b), Quantity::TendonLength, MjObject::Tendon, distance->second);
+      return mapped(b, Quantity::TendonLength, MjObject::Tendon, distance->second);
     if (stem == "Force1D" && !b.input)  // the equality row's force along the tendon
-      return mapped(std::move(b), Quantity::EqualityForce, MjObject::Equality, distance->second);
-    return unmapped(std::move(b), "`" + mate.path + "` is a distance constraint without this signal");
+      return mapped(b, Quantity::EqualityForce, MjObject::Equality, distance->second);
+    return unmapped(b, concat({"`", mate.path, "` is a distance constraint without this signal"}));
   }
   const bool tree = tree_mates_.count(m) > 0;
   if (any_of(stem, {"EnableInteraction", "InteractionEnabled"})) {
     if (auto e = equalities_of_mate_.find(m); e != equalities_of_mate_.end()) {
-      b = mapped(std::move(b), Quantity::EqualityActive, MjObject::Equality, "");
+      mapped(b, Quantity::EqualityActive, MjObject::Equality, "");
       b.names = e->second;
-      return b;
+      return;
     }
-    if (!tree) return unmapped(std::move(b), "`" + mate.path + "` was left out of the MJCF");
+    if (!tree) return unmapped(b, concat({"`", mate.path, "` was left out of the MJCF"}));
     if (b.input) {
-      return unmapped(std::move(b),
-                      "`" + mate.path + "` is a joint of MuJoCo's body tree, which cannot be switched off");
+      return unmapped(
+          b, concat({"`", mate.path, "` is a joint of MuJoCo's body tree, which cannot be switched off"}));
     }
     b.quantity = Quantity::Constant;
     b.initial = 1.0;
-    return b;
+    return;
   }
   if (!tree) {
-    return unmapped(std::move(b),
-                    "`" + mate.path +
-                        (mate.enabled ? "` closes a kinematic loop as an equality constraint"
-                                      : "` is disabled (`enabled: false`): an inactive equality "
-                                        "constraint") +
-                        ", which has no joint coordinate or force sensor");
+    return unmapped(
+        b, concat({"`", mate.path,
+                   mate.enabled ? "` closes a kinematic loop as an equality constraint"
+                                : "` is disabled (`enabled: false`): an inactive equality constraint",
+                   ", which has no joint coordinate or force sensor"}));
   }
   if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D", "Position1D", "LinearVelocity1D"})) {
     const bool rotational = any_of(stem, {"Angle", "AngularVelocity1D"});
     Element* joint = joint_for(m, rotational);
     if (!joint) {
-      return unmapped(std::move(b), "`" + mate.path + "` has no " + (rotational ? "rotational" : "linear") +
-                                        " joint coordinate");
+      return unmapped(b, concat({"`", mate.path, "` has no ", rotational ? "rotational" : "linear",
+                                 " joint coordinate"}));
     }
     const bool position = any_of(stem, {"Angle", "Position1D"});
-    return mapped(std::move(b), position ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint,
+    return mapped(b, position ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint,
                   *joint->get("name"));
   }
   if (!b.input && any_of(stem, {"Force3D", "Torque3D"})) {
     auto found = child_of_mate_.find(m);
-    if (found == child_of_mate_.end()) return unmapped(std::move(b), "`" + mate.path + "` was not emitted");
+    if (found == child_of_mate_.end()) return unmapped(b, concat({"`", mate.path, "` was not emitted"}));
     const int child = found->second;
     const int side = vertex_of_connector(mate.connectors[1]) == child ? 1 : 0;
-    b = mapped(std::move(b), stem == "Force3D" ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
-               site_for(mate.connectors[side]));
+    mapped(b, stem == "Force3D" ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
+           site_for(mate.connectors[side]));
     b.sign = side == 1 ? 1.0 : -1.0;
-    return b;
+    return;
   }
-  return unmapped(std::move(b), "`" + mate.path + "` has no MuJoCo element that carries it");
+  return unmapped(b, concat({"`", mate.path, "` has no MuJoCo element that carries it"}));
 }
 
-SignalBinding Lowering::bind_body(SignalBinding b, std::string_view stem, int n) {
-  const std::string body = name(view_.nodes[n].path);
-  if (!body_element_.count(n)) return unmapped(std::move(b), "`" + view_.nodes[n].path + "` was not emitted");
+void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
+  std::string body = name(view_.nodes[n].path);  // moved into the binding that names it
+  if (!body_element_.count(n)) return unmapped(b, concat({"`", view_.nodes[n].path, "` was not emitted"}));
   if (b.input) {
     const bool linear = stem == "LinearVelocity3D";
-    if (!linear && stem != "AngularVelocity3D") return unmapped(std::move(b), "no MuJoCo input of a body");
+    if (!linear && stem != "AngularVelocity3D") return unmapped(b, "no MuJoCo input of a body");
     if (mocap_.count(n)) {  // starting at the body's initial velocity, in world axes
       const sn::FrameNode& node = view_.nodes[n];
       const Eigen::Matrix3d system = node.parent >= 0
@@ -377,16 +382,15 @@ SignalBinding Lowering::bind_body(SignalBinding b, std::string_view stem, int n)
       const Eigen::Vector3d v =
           system * (linear ? node.body.initial_linear_velocity : node.body.initial_angular_velocity);
       b.initial_vector = {v.x(), v.y(), v.z()};
-      return mapped(std::move(b),
-                    linear ? Quantity::KinematicLinearVelocity : Quantity::KinematicAngularVelocity,
-                    MjObject::Body, body);
+      return mapped(b, linear ? Quantity::KinematicLinearVelocity : Quantity::KinematicAngularVelocity,
+                    MjObject::Body, std::move(body));
     }
     if (free_roots_.count(n)) {
-      return mapped(std::move(b), linear ? Quantity::FreeLinearVelocity : Quantity::FreeAngularVelocity,
-                    MjObject::Joint, body);
+      return mapped(b, linear ? Quantity::FreeLinearVelocity : Quantity::FreeAngularVelocity, MjObject::Joint,
+                    std::move(body));
     }
-    return unmapped(std::move(b), "`" + view_.nodes[n].path +
-                                      "` moves through its joints in MuJoCo; its velocity cannot be set");
+    return unmapped(b, concat({"`", view_.nodes[n].path,
+                               "` moves through its joints in MuJoCo; its velocity cannot be set"}));
   }
   const Quantity q = stem == "Position3D" || stem == "Position" ? Quantity::BodyPosition
                      : stem == "RPY"                            ? Quantity::BodyRPY
@@ -394,19 +398,19 @@ SignalBinding Lowering::bind_body(SignalBinding b, std::string_view stem, int n)
                      : stem == "AngularVelocity3D"              ? Quantity::BodyAngularVelocity
                      : stem == "Acceleration3D"                 ? Quantity::BodyLinearAcceleration
                                                                 : Quantity::None;
-  if (q == Quantity::None) return unmapped(std::move(b), "no MuJoCo quantity of a body matches it");
-  return mapped(std::move(b), q, MjObject::Body, body);
+  if (q == Quantity::None) return unmapped(b, "no MuJoCo quantity of a body matches it");
+  return mapped(b, q, MjObject::Body, std::move(body));
 }
 
-SignalBinding Lowering::bind_connector(SignalBinding b, std::string_view stem, int c) {
+void Lowering::bind_connector(SignalBinding& b, std::string_view stem, int c) {
   const Quantity q = b.input                       ? Quantity::None
                      : stem == "Position3D"        ? Quantity::SitePosition
                      : stem == "RPY"               ? Quantity::SiteRPY
                      : stem == "LinearVelocity3D"  ? Quantity::SiteLinearVelocity
                      : stem == "AngularVelocity3D" ? Quantity::SiteAngularVelocity
                                                    : Quantity::None;
-  if (q == Quantity::None) return unmapped(std::move(b), "no MuJoCo quantity of a mate connector matches it");
-  return mapped(std::move(b), q, MjObject::Site, site_for(c));
+  if (q == Quantity::None) return unmapped(b, "no MuJoCo quantity of a mate connector matches it");
+  return mapped(b, q, MjObject::Site, site_for(c));
 }
 
 // A site at a mate connector, in the MuJoCo body that carries it (the world for system connectors).

@@ -16,6 +16,9 @@ namespace openplx::mjcf {
 std::string number(double value);
 // Appends number(value) to `out`, with no string of its own.
 void append_number(std::string& out, double value);
+// Writes number(value) at `at`, which has room for kNumberChars, and returns the end of what it wrote.
+inline constexpr size_t kNumberChars = 32;  // the longest double ("-1.7976931348623157e+308") is 24
+char* write_number(char* at, double value);
 // Numbers separated by single spaces ("0 0 1.5"), as MJCF writes vectors.
 std::string numbers(std::initializer_list<double> values);
 

@@ -22,6 +22,44 @@ namespace {
 namespace fe = openplx::frontend;
 static_assert(std::is_same_v<ObjectRef, fe::ObjectId> && kNoObjectRef == fe::kNoObject);
 
+bool in_bundle(const fe::ModelInfo* m) {
+  return m && m->doc && m->doc->bundle;
+}
+
+// Where source_of finds an object declared, from the object's owner `at` up: the nearest attribute declared
+// outside the bundles, or the root model's declaration; nullopt where it falls back on the object's own
+// attribute. The same for every object of one owner; `settled` is false when the climb ended at a free
+// object, which the evaluator may yet adopt.
+std::optional<fe::SourceRange> declared_above(const fe::ObjectGraph& graph, fe::ObjectId at, bool& settled) {
+  settled = true;
+  for (;;) {
+    const fe::Object& obj = graph.at(at);
+    if (obj.owner == fe::kNoObject) {
+      settled = at == graph.root;
+      if (in_bundle(obj.type)) return std::nullopt;
+      return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
+    }
+    const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
+    if (!slot) return std::nullopt;
+    if (!in_bundle(slot->declared_in())) return slot->declaration()->member->range;
+    at = obj.owner;
+  }
+}
+
+// Where an object is declared, as the user sees it: an attribute a bundle model declares (a suspension's
+// `mate`, a wheel's `rim_alignment_mate`) is reported at the user's declaration of the instance holding it,
+// the nearest enclosing attribute declared outside the bundles. `above` is declared_above, or a memo of it.
+template <typename Above>
+fe::SourceRange source_with(const fe::ObjectGraph& graph, fe::ObjectId id, Above&& above) {
+  const fe::Object& obj = graph.at(id);
+  if (obj.owner == fe::kNoObject) return obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
+  const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
+  if (!slot) return {};
+  const fe::SourceRange own = slot->declaration()->member->range;
+  if (!in_bundle(slot->declared_in())) return own;
+  return above(obj.owner).value_or(own);
+}
+
 class SystemBuilder {
  public:
   SystemBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink)
@@ -212,7 +250,7 @@ class SystemBuilder {
         add_interaction(id);
         break;
       case Role::Kind::Signal:
-        add_signal(id);
+        add_signal(id, role.signal);
         break;
       case Role::Kind::VisualMaterial:
         view_.visual_materials.push_back(read_visual_material(in_, id));
@@ -348,6 +386,10 @@ class SystemBuilder {
     };
     Kind kind = Kind::None;
     const fe::ModelInfo* unsupported = nullptr;
+    // A signal's model: which of the models add_signal reads differently it is.
+    struct SignalModel {
+      bool input = false, broadcast = false, affine_input = false, affine_output = false, imu = false;
+    } signal;
   };
   Role role_of(const fe::ModelInfo* type) {
     auto [it, fresh] = roles_.try_emplace(type);
@@ -381,6 +423,9 @@ class SystemBuilder {
                 : sub(visual_material_)                           ? K::VisualMaterial
                 : sub(contact_model_)                             ? K::ContactModel
                                                                   : K::None;
+    if (role.kind == K::Signal) {
+      role.signal = {sub(input_), sub(broadcast_), sub(affine_input_), sub(affine_output_), sub(imu_output_)};
+    }
     return role;
   }
 
@@ -612,29 +657,30 @@ class SystemBuilder {
     }
   }
 
-  void add_signal(fe::ObjectId id) {
+  void add_signal(fe::ObjectId id, const Role::SignalModel& model) {
     const fe::Object& obj = ev_.graph().at(id);
-    Signal signal;
+    const size_t index = view_.signals.size();
+    Signal& signal = view_.signals.emplace_back();  // filled in place
     signal.object = id;
-    signal.input = is(obj, input_);
+    signal.input = model.input;
     signal.path = path_of(id);
     signal.type = obj.type->qualified;
     // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
     // `source` is the signal it transforms.
     const SignalSlots::Slots slots = signal_slots_.of(obj);
-    const fe::ObjectId source = is(obj, affine_output_) ? fe::kNoObject : in_.object(id, slots[kSource]);
+    const fe::ObjectId source = model.affine_output ? fe::kNoObject : in_.object(id, slots[kSource]);
     signal_sources_.push_back(source != fe::kNoObject ? source : in_.object(id, slots[kTorqueConverter]));
     signal.where = where_of(id);
     signal.enabled = in_.boolean(id, slots[kEnabled]).value_or(signal.enabled);
-    std::vector<fe::ObjectId> parts;
+    std::vector<fe::ObjectId>& parts = composite_parts_.emplace_back();
     for (size_t list : {kTargets, kJointSources, kObjectSources, kSources}) {
       if (!slots[list].present()) continue;
       signal.composite = true;
       for (fe::ObjectId part : in_.objects(id, slots[list])) parts.push_back(part);
     }
     using Composition = Signal::Composition;
-    if (is(obj, broadcast_)) signal.composition = Composition::Broadcast;
-    if (is(obj, affine_input_) || is(obj, affine_output_)) {
+    if (model.broadcast) signal.composition = Composition::Broadcast;
+    if (model.affine_input || model.affine_output) {
       signal.composite = true;
       signal.composition = Composition::Affine;
       signal.scale = real(id, "scale", 1.0);
@@ -642,7 +688,7 @@ class SystemBuilder {
       parts = {object(id, signal.input ? "target" : "source")};
     }
     if (slots[kSensors].present()) signal.sensors = in_.objects(id, slots[kSensors]).size();
-    if (is(obj, imu_output_)) {
+    if (model.imu) {
       signal.imu = true;
       // A sensor without an attachment of its own sits where the IMU is attached.
       const fe::ObjectId imu = object(id, "source");
@@ -661,14 +707,12 @@ class SystemBuilder {
                                               : Kind::Unknown;
           f.sensor_path = path_of(sensor);
           const fe::ObjectId own = object(sensor, "mate_connector_attachment");
-          sensor_attachments_.emplace_back(view_.signals.size(), signal.sensor_fields.size(),
+          sensor_attachments_.emplace_back(index, signal.sensor_fields.size(),
                                            own != fe::kNoObject ? own : imu_attachment);
         }
         signal.sensor_fields.push_back(std::move(f));
       }
     }
-    composite_parts_.push_back(std::move(parts));
-    view_.signals.push_back(std::move(signal));
   }
 
   // Materials by index, shared by geometries and contact models (the same material, the same index).
@@ -752,6 +796,9 @@ class SystemBuilder {
     signal.source_path = path_of(source);
   }
   void build_source_index() {
+    sources_.reserve(view_.connectors.size() + view_.shafts.size() + view_.couplings.size() +
+                     view_.nodes.size() + view_.mates.size() + view_.interactions.size() +
+                     view_.lidars.size());  // no rehashing
     // Inserted in reverse priority, so an object that were two things would keep the first kind.
     auto add = [&](SignalSource kind, const auto& items, auto accept) {
       for (size_t k = 0; k < items.size(); ++k)
@@ -767,14 +814,31 @@ class SystemBuilder {
     add(SignalSource::Lidar, view_.lidars, all);
   }
 
-  fe::SourceRange where_of(fe::ObjectId id) { return source_of(ev_.graph(), id); }
+  // source_of, with what lies above an owner found once (a body's signals and connectors share it).
+  fe::SourceRange where_of(fe::ObjectId id) {
+    return source_with(ev_.graph(), id, [&](fe::ObjectId owner) {
+      if (auto it = declared_above_.find(owner); it != declared_above_.end()) return it->second;
+      bool settled;
+      const std::optional<fe::SourceRange> above = declared_above(ev_.graph(), owner, settled);
+      if (settled) declared_above_.emplace(owner, above);
+      return above;
+    });
+  }
 
   // ObjectGraph::path, built on the owner's path when that is kept (a body's signals and connectors share
   // it).
   std::string path_of(fe::ObjectId id) {
     const fe::Object& obj = ev_.graph().at(id);
-    const std::string* owner = obj.owner == fe::kNoObject ? nullptr : rooted_path(obj.owner);
+    const std::string* owner = obj.owner == fe::kNoObject ? nullptr : owner_path(obj.owner);
     return owner ? joined_path(*owner, obj.name) : ev_.graph().path(id);
+  }
+
+  // rooted_path, the last owner's remembered: siblings (a body's signals) are visited in a row.
+  const std::string* owner_path(fe::ObjectId owner) {
+    if (owner == last_owner_ && last_owner_path_) return last_owner_path_;
+    const std::string* path = rooted_path(owner);
+    if (path) std::tie(last_owner_, last_owner_path_) = std::pair(owner, path);  // kept paths never move
+    return path;
   }
 
   // The path of the root or of an object below it, kept: an owned object keeps its owner and name, so its
@@ -1180,30 +1244,17 @@ class SystemBuilder {
   std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
   std::vector<fe::ObjectId> reference_bodies_;
-  std::unordered_map<fe::ObjectId, std::string> rooted_paths_;  // see rooted_path
+  fe::ObjectId last_owner_ = fe::kNoObject;  // see owner_path
+  const std::string* last_owner_path_ = nullptr;
+  std::unordered_map<fe::ObjectId, std::string> rooted_paths_;                       // see rooted_path
+  std::unordered_map<fe::ObjectId, std::optional<fe::SourceRange>> declared_above_;  // see where_of
 };
 
 }  // namespace
 
-// Where an object is declared, as the user sees it: an attribute a bundle model declares (a suspension's
-// `mate`, a wheel's `rim_alignment_mate`) is reported at the user's declaration of the instance holding it,
-// the nearest enclosing attribute declared outside the bundles.
 frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id) {
-  auto in_bundle = [](const fe::ModelInfo* m) { return m && m->doc && m->doc->bundle; };
-  fe::SourceRange first;
-  for (fe::ObjectId at = id; at != fe::kNoObject;) {
-    const fe::Object& obj = graph.at(at);
-    if (obj.owner == fe::kNoObject) {
-      const fe::SourceRange root = obj.type->decl ? obj.type->decl->range : fe::SourceRange{};
-      return in_bundle(obj.type) && at != id ? first : root;
-    }
-    const fe::Slot* slot = graph.at(obj.owner).find(obj.name);
-    if (!slot) return first;
-    if (at == id) first = slot->declaration()->member->range;
-    if (!in_bundle(slot->declared_in())) return slot->declaration()->member->range;
-    at = obj.owner;
-  }
-  return first;
+  bool settled;
+  return source_with(graph, id, [&](fe::ObjectId owner) { return declared_above(graph, owner, settled); });
 }
 
 ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,

@@ -16,6 +16,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -168,7 +169,7 @@ struct Signal {
   ObjectRef object;
   bool input = false;
   std::string path;
-  std::string type;  // its model, e.g. "Physics.Signals.AngleOutput"
+  std::string_view type;  // its model's name, e.g. "Physics.Signals.AngleOutput", held by the program
   SignalSource source_kind = SignalSource::None;
   int source = -1;  // index into the list of its kind (interactions, mates, nodes, shafts, connectors)
   std::string source_path;  // the source's instance path (Other sources)

@@ -5,7 +5,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <list>
 #include <map>
+#include <regex>
+#include <set>
 
 #include "frontend/quoted.h"
 #include "mjcf_emitter/signal_binding.h"
@@ -297,6 +301,44 @@ TEST(SignalKind, UnitsAndValueKindsFollowTheModelName) {
   EXPECT_EQ(mj::signal_stem("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"), "AngularVelocity3D");
 }
 
+// The emitter classifies a signal's model once per model name held: for every Input and Output model the
+// bundles declare, the class is signal_kind's and signal_stem's, found again for the same name held, and
+// alike for an equal name held elsewhere.
+TEST(SignalKind, ClassesAreTheKindAndStemOfEveryBundleSignalModel) {
+  const fs::path bundles = fs::path(OPENPLX_SAMPLES_DIR).parent_path() / "bundles";
+  const std::regex declaration(R"(^([A-Za-z0-9]+(Input|Output)) is )");
+  std::set<std::string> types;
+  for (const fs::directory_entry& file : fs::recursive_directory_iterator(bundles)) {
+    if (file.path().extension() != ".openplx") continue;
+    std::string space;  // a model's namespace is its folder below bundles/
+    for (const fs::path& part : fs::relative(file.path().parent_path(), bundles))
+      space += part.string() + ".";
+    std::ifstream in(file.path());
+    std::smatch match;
+    for (std::string line; std::getline(in, line);) {
+      if (std::regex_search(line, match, declaration)) types.insert(space + match[1].str());
+    }
+  }
+  ASSERT_GE(types.size(), 60u);  // Physics, Physics3D, DriveTrain, Robotics, Control, Sensors signals
+  EXPECT_TRUE(types.count("Physics3D.Signals.MateConnector.AngularVelocity3DOutput"));
+  mj::SignalClasses classes;
+  std::list<std::string> elsewhere;  // names held apart from `types`, for as long as `classes` is used
+  for (const std::string& type : types) {
+    const mj::SignalClasses::Class& c = classes.of(type);
+    EXPECT_EQ(c.kind.value, mj::signal_kind(type).value) << type;
+    EXPECT_EQ(c.kind.unit, mj::signal_kind(type).unit) << type;
+    EXPECT_EQ(c.stem, mj::signal_stem(type)) << type;
+    EXPECT_FALSE(c.stem.ends_with("Input") || c.stem.ends_with("Output") || c.stem.empty()) << type;
+    EXPECT_EQ(&classes.of(type), &c) << type;
+    const mj::SignalClasses::Class& alike = classes.of(elsewhere.emplace_back(type));
+    EXPECT_EQ(alike.kind.value, c.kind.value) << type;
+    EXPECT_EQ(alike.kind.unit, c.kind.unit) << type;
+    EXPECT_EQ(alike.stem, c.stem) << type;
+    EXPECT_GE(alike.stem.data(), elsewhere.back().data()) << type;  // in the name it was asked for
+  }
+  EXPECT_EQ(classes.size(), 2 * types.size());
+}
+
 // The manifest's strings are quoted as frontend::quoted writes them (escapes included), its numbers are the
 // shortest round trip, and numbers JSON cannot hold are strings.
 TEST(Manifest, StringsAreEscapedAndNumbersShortest) {
@@ -316,6 +358,25 @@ TEST(Manifest, StringsAreEscapedAndNumbersShortest) {
                       "\"-inf\", \"high\": \"nan\", \"reason\": \"plain\""),
             std::string::npos)
       << json;
+}
+
+// The manifest scans strings eight bytes at a time for what to escape: each escaped character, and other
+// control characters and UTF-8, at every position of a word and of the tail, is written as fe::quoted writes
+// it.
+TEST(Manifest, EscapesAtEveryPositionAsQuotedDoes) {
+  for (const char special : {'"', '\\', '\n', '\t', '\r', '\x01', '\x1f', ' ', '\x7f', '\xc3'}) {
+    for (size_t size = 1; size <= 25; ++size) {
+      for (size_t at = 0; at < size; ++at) {
+        mj::SignalBinding b;
+        b.path = std::string(size, 'a');
+        b.path[at] = special;
+        b.reason = b.path.substr(at);
+        const std::string json = mj::manifest_json("model", "p/", {b}, {});
+        EXPECT_NE(json.find("{\"path\": " + fe::quoted(b.path) + ", "), std::string::npos) << json;
+        EXPECT_NE(json.find("\"reason\": " + fe::quoted(b.reason) + ", "), std::string::npos) << json;
+      }
+    }
+  }
 }
 
 // The converter writes the manifest in pieces: they join into exactly the text manifest_json gives, and a
