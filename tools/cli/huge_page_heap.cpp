@@ -20,10 +20,12 @@ void reserve_huge_page_heap(size_t bytes) {
   // Blocks up to that size come from the heap (an mmap'd block would get small pages); never trimmed.
   mallopt(M_MMAP_THRESHOLD, 2 * kBlock);
   mallopt(M_TRIM_THRESHOLD, INT32_MAX);
-  const auto begin = reinterpret_cast<uintptr_t>(sbrk(0));
   // Blocks taken in a row and given back coalesce into the heap's top chunk; none of it is touched yet.
   std::vector<void*> blocks;
+  blocks.reserve(bytes / kBlock + 1);
   for (size_t taken = 0; taken < bytes; taken += kBlock) blocks.push_back(malloc(kBlock));
+  // From the first block, not the break: the top chunk already holds main's pad (M_TOP_PAD), untouched.
+  const auto begin = reinterpret_cast<uintptr_t>(blocks.front());
   for (void* block : blocks) free(block);
   const auto end = reinterpret_cast<uintptr_t>(sbrk(0));
   const uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
