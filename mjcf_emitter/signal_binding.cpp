@@ -448,23 +448,21 @@ void write_manifest_json(std::string_view model_name, std::string_view prefix,
   head.text("{\n  \"model\": ").string(model_name).text(",\n  \"prefix\": ").string(prefix);
   head.text(",\n  \"signals\": [");
   done(head, kPiece);
-  for (size_t k = 0; k < bindings.size(); ++k) {
-    Cursor out = cursor(room_for(bindings[k]));
-    if (k) out.text(",");
-    out.text("\n    ");
-    write_binding(out, bindings[k]);
-    done(out, kPiece);
-  }
+  // The items of one JSON array, each on its own line.
+  auto items = [&](const auto& list, auto write_item) {
+    for (size_t k = 0; k < list.size(); ++k) {
+      Cursor out = cursor(room_for(list[k]));
+      if (k) out.text(",");
+      out.text("\n    ");
+      write_item(out, list[k]);
+      done(out, kPiece);
+    }
+  };
+  items(bindings, [](Cursor& out, const SignalBinding& b) { write_binding(out, b); });
   Cursor middle = cursor(kFixedRoom);
   middle.text("\n  ],\n  \"laws\": [");
   done(middle, kPiece);
-  for (size_t k = 0; k < laws.size(); ++k) {
-    Cursor out = cursor(room_for(laws[k]));
-    if (k) out.text(",");
-    out.text("\n    ");
-    write_law(out, laws[k]);
-    done(out, kPiece);
-  }
+  items(laws, [](Cursor& out, const RuntimeLaw& law) { write_law(out, law); });
   Cursor tail = cursor(kFixedRoom);
   tail.text("\n  ]\n}\n");
   done(tail, 0);
