@@ -25,12 +25,6 @@ std::string normalised(const fs::path& path) {
   return (ec ? path : absolute).lexically_normal().generic_string();
 }
 
-fs::path executable_dir() {
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
-}
-
 bool is_bundle_dir(const fs::path& dir) {
   std::error_code ec;
   return fs::is_regular_file(dir / "config.openplx", ec);
@@ -115,6 +109,12 @@ std::optional<BundleConfig> read_config(const std::string& dir, const embedded::
 
 }  // namespace
 
+std::string executable_dir() {
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : exe.parent_path().string();
+}
+
 // "Math", "Math@0.20.2", "Math==0.20.2" (the releases' pin); a range ("Math>=0.19") names the bundle and
 // is not checked.
 BundleDependency parse_dependency(const std::string& text) {
@@ -139,7 +139,7 @@ std::optional<BundleConfig> read_bundle_config(const std::string& dir, SourceMan
 std::vector<BundleRoot> bundle_search_path(const std::vector<std::string>& extra_dirs, bool default_bundles) {
   std::vector<BundleRoot> path;
   std::error_code ec;
-  const fs::path installed = executable_dir() / "../share/openplx2mjcf/bundles";
+  const fs::path installed = fs::path(executable_dir()) / "../share/openplx2mjcf/bundles";
   if (!default_bundles) {
     // only the user's: OPENPLX_BUNDLE_PATH and -B (an AGX/OpenPLX installation's bundles)
   } else if (fs::is_directory(installed, ec)) {

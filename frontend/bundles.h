@@ -59,6 +59,9 @@ std::vector<BundleConfig> discover_bundles(const std::vector<BundleRoot>& search
 // The enclosing bundle folder of `file` (the nearest ancestor folder with config.openplx), if any.
 std::optional<std::string> enclosing_bundle_dir(const std::string& file);
 
+// The running executable's folder (empty when /proc/self/exe cannot be read): installed files lie beside it.
+std::string executable_dir();
+
 // "Name" or "Name@1.2.3".
 BundleDependency parse_dependency(const std::string& text);
 

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <vector>
 
+#include "frontend/bundles.h"
 #include "frontend/urdf/urdf_module_abi.h"
 
 #ifdef OPENPLX_URDF_LINKED
@@ -26,9 +27,8 @@ std::vector<std::string>& extra_candidates() {
 std::vector<std::string> module_candidates() {
   namespace fs = std::filesystem;
   std::vector<std::string> paths;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) paths.push_back((exe.parent_path() / "../lib/openplx2mjcf/libopenplx_urdf.so").lexically_normal());
+  if (const fs::path dir = executable_dir(); !dir.empty())
+    paths.push_back((dir / "../lib/openplx2mjcf/libopenplx_urdf.so").lexically_normal());
 #ifdef OPENPLX_URDF_MODULE_BUILT
   paths.emplace_back(OPENPLX_URDF_MODULE_BUILT);
 #endif
