@@ -753,6 +753,7 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
     Scope scope{binding.model->doc, binding.model, binding.self};
     const ExprId expr = *binding.entry->value;
     const bool path = is_path_expression(binding.model->doc->doc, expr);
+    const bool outer_reads_instance = std::exchange(reads_instance_, false);
     Value v = eval(expr, scope, &type);
     slot = &graph_.at(id).slots[slot_index];
     if (v.kind == Value::Kind::Object && graph_.at(v.object).owner == kNoObject &&
@@ -760,7 +761,10 @@ void Evaluator::evaluate_slot(ObjectId id, uint32_t slot_index) {
       adopt(v.object, id, std::string(slot->name()), binding.level);
       slot = &graph_.at(id).slots[slot_index];
       owns = true;
+      auto [it, first] = instance_free_.try_emplace(binding.entry, !reads_instance_);
+      if (!first) it->second = it->second && !reads_instance_;
     }
+    reads_instance_ = outer_reads_instance;
     result = convert(std::move(v), type, binding.model->doc->doc.expr(expr).range,
                      [&] { return slot_path(id, graph_.at(id).slots[slot_index].name()); });
   }
@@ -1026,6 +1030,7 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
       const SlotIndex& index = *graph_.at(scope.self).index;
       auto it = index.find(e.text);
       if (it != index.end()) {
+        reads_instance_ = true;
         graph_.at(scope.self).slots[it->second].used = true;  // an expression depends on it
         entity.value = value(scope.self, it->second);
         if (entity.value.kind == Value::Kind::Unset) {
@@ -1065,6 +1070,7 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
       sink_.report(DiagCode::NotAValue, e.range, "`this` has no meaning in a global attribute");
       entity.value = Value::error();
     } else {
+      reads_instance_ = true;
       entity.value = Value::of_object(scope.self);
     }
     return entity;
@@ -1457,6 +1463,7 @@ Value Evaluator::eval_call(const Expr& call, const Scope& scope) {
       sink_.report(DiagCode::UnknownMethod, callee.range, "Unknown method " + std::string(name));
       return Value::error();
     }
+    reads_instance_ = true;
     self = Value::of_object(scope.self);
     type = graph_.at(scope.self).type;
   } else {

@@ -90,6 +90,13 @@ class Evaluator {
   // report; kNoObject when there is none. Every other pure default of the type has the same values, so
   // evaluate_layouts leaves those unmade and a reader may read this one in their place.
   ObjectId checked_default(const ModelInfo* type) const;
+  // Whether `entry` made a new object for its attribute without reading anything of the instance it binds
+  // (`{0, 0, 1}`, `Math.Vec3.Y_AXIS()`), every time it was evaluated: the object then has the same values
+  // wherever the entry binds an attribute of one type. False until it has been evaluated once.
+  bool instance_free(const Entry* entry) const {
+    auto it = instance_free_.find(entry);
+    return it != instance_free_.end() && it->second;
+  }
   // The value of one attribute (evaluated on first use).
   const Value& value(ObjectId object, uint32_t slot);
   const Value* value(ObjectId object, std::string_view slot);
@@ -113,6 +120,8 @@ class Evaluator {
 
  private:
   bool tracking_ = false;
+  bool reads_instance_ = false;  // the expression being evaluated read its instance (see instance_free)
+  std::unordered_map<const Entry*, bool> instance_free_;
 
   struct Scope {
     DocumentInfo* doc = nullptr;

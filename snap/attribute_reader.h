@@ -117,17 +117,24 @@ class AttributeReader {
     return object(id, attribute);
   }
   // A Math.Vec3 attribute (zero when absent; a component that is not a number is 0).
+  // Two kinds of vector read once and remembered: a pending default's (by its type), and one written the
+  // same way for every instance (`size: {0.1, 0.1, 1}` in a model that has a thousand instances; by entry).
   template <typename Attribute>
   Eigen::Vector3d vec3(frontend::ObjectId id, const Attribute& attribute) {
     const frontend::ModelInfo* shared = pending_default(id, attribute);
     if (shared) {
       if (auto it = default_vec3_.find(shared); it != default_vec3_.end()) return it->second;
     }
+    const WrittenAlike alike = written_alike(id, attribute);
+    if (alike.entry && ev_.instance_free(alike.entry)) {
+      if (auto it = alike_vec3_.find(alike); it != alike_vec3_.end()) return it->second;
+    }
     const frontend::ObjectId v = object(id, attribute);
     if (v == frontend::kNoObject) return Eigen::Vector3d::Zero();
     const SlotTable<3>::Slots xyz = xyz_.of(graph().at(v));
     const Eigen::Vector3d out{real(v, xyz[0]), real(v, xyz[1]), real(v, xyz[2])};
     if (shared) default_vec3_.emplace(shared, out);
+    if (alike.entry && ev_.instance_free(alike.entry)) alike_vec3_.emplace(alike, out);
     return out;
   }
   // A Math.Quat's components x, y, z, w; one absent or not a number is 0 (w: 1).
@@ -144,7 +151,42 @@ class AttributeReader {
   SlotTable<3> xyz_{{"x", "y", "z"}};
   SlotTable<4> xyzw_{{"x", "y", "z", "w"}};
   std::unordered_map<const frontend::ModelInfo*, Eigen::Vector3d> default_vec3_;  // by pending_default
+  // An attribute's binding entry, with the attribute's type and the type of the instance the entry reads
+  // names in: an entry that reads nothing of its instance gives equal values wherever all three are equal,
+  // unless entries on the attribute's parts change them (then it has none).
+  struct WrittenAlike {
+    const frontend::Entry* entry = nullptr;
+    const frontend::Type* type = nullptr;
+    const frontend::ModelInfo* self_type = nullptr;
+    bool operator==(const WrittenAlike&) const = default;
+  };
+  struct WrittenAlikeHash {
+    size_t operator()(const WrittenAlike& k) const {
+      const std::hash<const void*> h;
+      return h(k.entry) ^ (h(k.type) * 31) ^ (h(k.self_type) * 961);
+    }
+  };
+  template <typename Attribute>
+  WrittenAlike written_alike(frontend::ObjectId id, const Attribute& attribute) const;
+  std::unordered_map<WrittenAlike, Eigen::Vector3d, WrittenAlikeHash> alike_vec3_;
 };
+
+template <typename Attribute>
+AttributeReader::WrittenAlike AttributeReader::written_alike(frontend::ObjectId id,
+                                                             const Attribute& attribute) const {
+  const frontend::Object& object = graph().at(id);
+  uint32_t index = AttributeSlot::kAbsent;
+  if constexpr (std::is_same_v<Attribute, AttributeSlot>) {
+    index = attribute.index;
+  } else if (auto it = object.index->find(attribute); it != object.index->end()) {
+    index = it->second;
+  }
+  if (index == AttributeSlot::kAbsent) return {};
+  const frontend::Slot& slot = object.slots[index];
+  // Entries on its parts (`position.x: 2` beside `position: {0, 1, 0}`) make each instance's value its own.
+  if (!slot.binding.entry || slot.entries_below || slot.binding.self == frontend::kNoObject) return {};
+  return {slot.binding.entry, slot.type(), graph().at(slot.binding.self).type};
+}
 
 template <typename Attribute>
 const frontend::ModelInfo* AttributeReader::pending_default(frontend::ObjectId id,

@@ -324,8 +324,7 @@ class SystemBuilder {
     const fe::Object& obj = ev_.graph().at(id);
     const fe::Slot& slot = obj.slots[k];
     if (!slot.type() || slot.type()->kind != fe::TypeKind::Model || slot.type()->is_array || slot.optional())
-      return false;                       // no owned part (arrays and references are not parts)
-    if (slot.entries_below) return true;  // entries on its parts may add anything
+      return false;  // no owned part (arrays and references are not parts)
     if (const fe::ModelInfo* type = ev_.pending_default(id, k)) {
       // A pure default has its type's parts: answered on the checked default of that type.
       if (const fe::ObjectId same = ev_.checked_default(type); same != fe::kNoObject) {
@@ -336,8 +335,11 @@ class SystemBuilder {
         return holds;
       }
     }
+    // Entries on its parts may add anything, but the same entries bind every instance of a layout.
     const fe::ObjectId checked = ev_.checked_instance(obj);
     if (checked == fe::kNoObject || checked == id) return true;
+    // An enclosing model's assignment laid over this instance alone may give the part another type.
+    if (slot.binding.entry != ev_.graph().at(checked).slots[k].binding.entry) return true;
     auto [it, fresh] = holds_parts_.try_emplace({obj.layout, k}, true);  // true while being decided
     if (!fresh) return it->second;
     const fe::Slot& model = ev_.graph().at(checked).slots[k];

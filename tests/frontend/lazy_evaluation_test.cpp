@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -131,15 +132,19 @@ TEST(LazyEvaluation, UntouchedDefaultsOfOneTypeAreMadeOnce) {
       openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
   ASSERT_FALSE(sink.has_errors());
   ASSERT_EQ(view.mates.size(), 4u);
-  size_t flexibilities = 0, dissipations = 0;
+  size_t flexibilities = 0, dissipations = 0, marshallings = 0;
   const fe::ObjectGraph& graph = evaluation.evaluator->graph();
   for (fe::ObjectId id = 0; id < graph.objects.size(); ++id) {
     const std::string& type = graph.at(id).type->qualified;
     flexibilities += type == "Physics3D.Interactions.Flexibility.DefaultHingeFlexibility";
     dissipations += type == "Physics3D.Interactions.Dissipation.DefaultHingeDissipation";
+    marshallings += type == "Physics.Signals.Marshalling";
   }
   EXPECT_EQ(flexibilities, 1u);
   EXPECT_EQ(dissipations, 1u);
+  // A hinge's four scalar signals declare fields in their marshalling (entries on a part): made in the
+  // checked hinge only, since the same entries bind it in the other three and nothing there has a role.
+  EXPECT_EQ(marshallings, 4u);
   // And the four mates read the same parameters as eager evaluation gives them.
   const Conversion lazy = convert(model, scratch.path(), false);
   const Conversion eager = convert(model, scratch.path(), true);
@@ -155,6 +160,59 @@ TEST(LazyEvaluation, ErrorsInAnUntouchedDefaultAreReportedAtEveryInstance) {
       "Part:\n    x is Real\nHolder:\n    part is Part\n    v is Real: 0\nScene:\n    a is Holder:\n"
       "        v: 1\n    b is Holder:\n        v: 2\n",
       {"Scene.a.part.x", "Scene.b.part.x"});
+}
+
+// A vector written the same way for every instance (`size: {0.1, 0.2, 0.3}`, `Math.Vec3.from_xyz(...)`) is
+// read once per entry and not made in the other instances; one whose entry reads its instance (`{width,
+// 0, 0}`) or whose parts an instance assigns (`top.position.z: 2`) is still each instance's own.
+TEST(LazyEvaluation, VectorsWrittenAlikeAreReadOnceAndKeepEachInstancesOwnValue) {
+  openplx::testing::ScratchDir scratch;
+  const fs::path model = scratch.path() / "alike.openplx";
+  std::ofstream(model) << "Link is Physics3D.Bodies.RigidBody:\n"
+                          "    inertia.mass: 1\n"
+                          "    width is Real: 0.1\n"
+                          "    geometry is Physics3D.Geometries.Box:\n"
+                          "        size: {0.1, 0.2, 0.3}\n"
+                          "    top is Physics3D.Interactions.MateConnector:\n"
+                          "        position: Math.Vec3.from_xyz(0, 0, 0.5)\n"
+                          "    side is Physics3D.Interactions.MateConnector:\n"
+                          "        position: {width, 0, 0}\n"
+                          "Scene is Physics3D.System:\n"
+                          "    a is Link\n"
+                          "    b is Link:\n"
+                          "        top.position.z: 2\n"
+                          "        width: 3\n"
+                          "    c is Link\n"
+                          "    d is Link:\n"
+                          "        width: 5\n";
+  namespace fe = openplx::frontend;
+  ::unsetenv("OPENPLX_EVALUATE_EVERYTHING");
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink;
+  fe::Evaluation evaluation =
+      fe::evaluate_file({model.string(), std::nullopt, {}, std::nullopt}, sources, sink);
+  ASSERT_NE(evaluation.root, fe::kNoObject);
+  const openplx::snap::ResolvedSystem view =
+      openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+  ASSERT_FALSE(sink.has_errors());
+  std::map<std::string, Eigen::Vector3d> at;
+  for (const auto& c : view.connectors) at[c.path] = c.local.position;
+  for (const auto& g : view.geometries) at[g.path] = g.size;
+  const std::map<std::string, Eigen::Vector3d> expected = {
+      {"a.top", {0, 0, 0.5}},          {"b.top", {0, 0, 2}},
+      {"c.top", {0, 0, 0.5}},          {"d.top", {0, 0, 0.5}},
+      {"a.side", {0.1, 0, 0}},         {"b.side", {3, 0, 0}},
+      {"c.side", {0.1, 0, 0}},         {"d.side", {5, 0, 0}},
+      {"a.geometry", {0.1, 0.2, 0.3}}, {"b.geometry", {0.1, 0.2, 0.3}},
+      {"c.geometry", {0.1, 0.2, 0.3}}, {"d.geometry", {0.1, 0.2, 0.3}}};
+  for (const auto& [path, vector] : expected) {
+    ASSERT_TRUE(at.count(path)) << path;
+    EXPECT_TRUE(at[path].isApprox(vector)) << path << ": " << at[path].transpose();
+  }
+  // a and c share a layout: c's size and top position were read from a's entries, not made again.
+  const fe::Object& c = evaluation.evaluator->graph().at(view.geometries[2].object);
+  ASSERT_EQ(view.geometries[2].path, "c.geometry");
+  EXPECT_EQ(c.find("size")->state, fe::Slot::State::Pending);
 }
 
 }  // namespace
