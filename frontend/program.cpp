@@ -483,7 +483,7 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
 
 Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report) {
   // `import $"robot.urdf" as robots.arm` names the imported model with a dotted alias.
-  if (name.parts.size() > 1) {
+  if (name.parts.size() > 1 && !doc->import_models.empty()) {
     if (auto it = doc->import_models.find(to_string(name)); it != doc->import_models.end())
       return Symbol{it->second};
   }
@@ -515,7 +515,17 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
 }
 
 ModelInfo* Program::resolve_model_name(DocumentInfo* doc, const QualifiedName& name, bool report) {
+  std::string key;
+  for (size_t i = 0; i < name.parts.size(); ++i) {
+    if (i) key += '\0';
+    key += name.parts[i].text;
+  }
+  if (auto it = doc->model_names.find(key); it != doc->model_names.end()) return it->second;
+  const size_t reported = sink_.diagnostics().size();
   Symbol s = lookup_qualified(doc, name, report);
+  // Only a quiet lookup is remembered: a 0.17.8 name is warned about wherever it is written.
+  if (s.model && report && sink_.diagnostics().size() == reported)
+    doc->model_names.emplace(std::move(key), s.model);
   if (!s) return nullptr;
   if (!s.model) {
     if (report) {

@@ -46,6 +46,9 @@ struct DocumentInfo {
   std::map<std::string, Namespace*, std::less<>> import_namespaces;  // `import @"x.openplx" as X`
   std::map<std::string, ModelInfo*, std::less<>> import_models;      // asset imports
   std::vector<Namespace*> imported_files;  // `import @"x.openplx"` without `as`: looked up like locals
+  // Type names this document's text resolved to a model without a word, by their parts joined with '\0': a
+  // thousand `lN is Link` lines look the name up once (a name found never changes its meaning).
+  std::unordered_map<std::string, ModelInfo*> model_names;
 };
 
 struct GlobalInfo {

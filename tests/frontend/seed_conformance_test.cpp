@@ -39,6 +39,20 @@ TEST_F(SeedModels, ThreeLevelSnapExampleEvaluates) {
   EXPECT_EQ(value("rod_system.rod_system.rod.connector.position"), "{0.0, 0.0, -0.6}");
 }
 
+// Type names are looked up once per document and text, except a 0.17.8 name: every place it is written
+// gets its warning.
+TEST_F(SeedModels, AnOldNameIsWarnedAboutWhereverItIsWritten) {
+  ASSERT_TRUE(
+      load("Scene is Physics3D.System:\n"
+           "    a is Physics3D.Charges.Box\n"
+           "    b is Physics3D.Charges.Box\n"
+           "    c is Physics3D.Geometries.Box\n"
+           "    d is Physics3D.Geometries.Box\n"))
+      << all_diags();
+  EXPECT_EQ(count(fe::DiagCode::DeprecatedName), 2u) << all_diags();
+  accept_all_diags();
+}
+
 TEST_F(SeedModels, TerrainShovelAndLinkDataEvaluate) {
   ASSERT_TRUE(load(
       "Scene is Physics3D.System:\n"
