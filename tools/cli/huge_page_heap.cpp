@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <vector>
 
+#include "tools/cli/small_object_arena.h"
+
 namespace openplx::cli {
 
 void reserve_huge_page_heap(size_t bytes) {
@@ -32,6 +34,7 @@ void reserve_huge_page_heap(size_t bytes) {
   const uintptr_t last = end & ~(kHugePage - 1);
   // Without THP (kernel setting "never") this fails harmlessly and the heap keeps small pages.
   if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  arena::use_huge_pages();  // and where small blocks come from, when operator new uses the arena
 #endif
 }
 
