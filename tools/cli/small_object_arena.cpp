@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 
 namespace openplx::cli::arena {
 namespace {
@@ -11,53 +12,117 @@ namespace {
 constexpr std::size_t kGranule = 16;
 constexpr std::size_t kLargest = 2048;  // larger blocks go to malloc
 constexpr std::size_t kClasses = kLargest / kGranule + 1;
-constexpr std::size_t kPageShift = 16;  // 64 KiB pages, each of one size class
+constexpr std::size_t kPageShift = 14;  // 16 KiB pages, each of one size class
 constexpr std::size_t kPage = std::size_t{1} << kPageShift;
 // Address space only: untouched pages cost nothing. Without room for it (strict overcommit), malloc is used.
 constexpr std::size_t kReserved = std::size_t{16} << 30;
 constexpr std::size_t kPages = kReserved / kPage;
+constexpr int kOrphans = 8;
 
 struct FreeBlock {
   FreeBlock* next;
 };
 
-struct Arena {
-  std::atomic_flag busy = ATOMIC_FLAG_INIT;
-  bool tried = false;
+// What one thread allocates from, without a lock: the unused rest of its newest page of each class, and the
+// blocks it was given back. Plain data, so that reaching it costs no initialisation check.
+struct Cache {
+  char* cursor[kClasses];
+  char* limit[kClasses];
+  FreeBlock* free[kClasses];
+  bool registered;  // its hand-back at thread exit is arranged
+};
+
+thread_local Cache cache;
+
+// Shared by all threads: the reserved range, the page cursor, each page's class, and the caches of threads
+// that ended (the converter runs its passes on threads of their own, one after another).
+struct Shared {
+  std::atomic_flag busy = ATOMIC_FLAG_INIT;  // reserving, and the orphans
+  std::atomic<bool> tried{false};
   char* base = nullptr;
-  char* next_page = nullptr;  // pages below it have a class
   char* end = nullptr;
-  char* cursor[kClasses] = {};  // the unused rest of each class's newest page
-  char* limit[kClasses] = {};
-  FreeBlock* free[kClasses] = {};
+  std::atomic<char*> next_page{nullptr};  // pages below it have a class
+  Cache orphans[kOrphans] = {};
+  int orphan_count = 0;
   unsigned char page_class[kPages] = {};
 };
 
-Arena arena;  // zero-initialised: no constructor runs before main's first allocation
+Shared shared;  // constant-initialised: no constructor runs before main's first allocation
 
 class Lock {
  public:
   Lock() {
-    while (arena.busy.test_and_set(std::memory_order_acquire)) {
+    while (shared.busy.test_and_set(std::memory_order_acquire)) {
     }
   }
-  ~Lock() { arena.busy.clear(std::memory_order_release); }
+  ~Lock() { shared.busy.clear(std::memory_order_release); }
 };
 
-bool reserve() {
-  arena.tried = true;
-  void* range =
-      mmap(nullptr, kReserved, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-  if (range == MAP_FAILED) return false;
-  arena.base = static_cast<char*>(range);
-  arena.next_page = arena.base;
-  arena.end = arena.base + kReserved;
-  return true;
+bool reserved() {
+  if (shared.tried.load(std::memory_order_acquire)) return shared.base != nullptr;
+  Lock lock;
+  if (!shared.tried.load(std::memory_order_relaxed)) {
+    void* range =
+        mmap(nullptr, kReserved, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (range != MAP_FAILED) {
+      shared.base = static_cast<char*>(range);
+      shared.end = shared.base + kReserved;
+      shared.next_page.store(shared.base, std::memory_order_relaxed);
+    }
+    shared.tried.store(true, std::memory_order_release);
+  }
+  return shared.base != nullptr;
+}
+
+// A thread's cache goes back to the shared pool when the thread ends, for the next thread to take up: the
+// blocks it was given back stay in use.
+struct HandBack {
+  ~HandBack() {
+    Lock lock;
+    if (shared.orphan_count < kOrphans) shared.orphans[shared.orphan_count++] = cache;
+    const bool registered = cache.registered;
+    std::memset(&cache, 0, sizeof cache);  // whatever this thread still frees or takes starts afresh
+    cache.registered = registered;
+  }
+};
+
+void register_thread() {
+  cache.registered = true;
+  {
+    Lock lock;
+    if (shared.orphan_count > 0) {
+      cache = shared.orphans[--shared.orphan_count];
+      cache.registered = true;
+    }
+  }
+  static thread_local HandBack hand_back;
+  (void)hand_back;
 }
 
 bool owns(const void* block) {
   const char* p = static_cast<const char*>(block);
-  return arena.base && p >= arena.base && p < arena.next_page;
+  return shared.base && p >= shared.base && p < shared.next_page.load(std::memory_order_relaxed);
+}
+
+std::size_t class_of(const void* block) {
+  return shared
+      .page_class[static_cast<std::size_t>(static_cast<const char*>(block) - shared.base) >> kPageShift];
+}
+
+// A new page for class `c`; false when the range is used up or cannot be had.
+bool new_page(std::size_t c) {
+  if (!reserved()) return false;
+  if (!cache.registered) {
+    register_thread();
+    if (cache.free[c] || (cache.cursor[c] && cache.cursor[c] + c * kGranule <= cache.limit[c])) return true;
+  }
+  char* page = shared.next_page.fetch_add(kPage, std::memory_order_relaxed);
+  if (page >= shared.end) return false;
+  shared.page_class[static_cast<std::size_t>(page - shared.base) >> kPageShift] =
+      static_cast<unsigned char>(c);
+  cache.cursor[c] = page;
+  cache.limit[c] = page + kPage;
+  return true;
 }
 
 }  // namespace
@@ -65,52 +130,43 @@ bool owns(const void* block) {
 void* allocate(std::size_t bytes) noexcept {
   if (bytes > kLargest) return nullptr;
   const std::size_t c = bytes == 0 ? 1 : (bytes + kGranule - 1) / kGranule;
-  Lock lock;
-  if (FreeBlock* block = arena.free[c]) {
-    arena.free[c] = block->next;
+  if (FreeBlock* block = cache.free[c]) {
+    cache.free[c] = block->next;
     return block;
   }
   const std::size_t size = c * kGranule;
-  if (!arena.cursor[c] || arena.cursor[c] + size > arena.limit[c]) {
-    if (!arena.base && (arena.tried || !reserve())) return nullptr;
-    if (arena.next_page == arena.end) return nullptr;
-    char* page = arena.next_page;
-    arena.next_page += kPage;
-    arena.page_class[static_cast<std::size_t>(page - arena.base) >> kPageShift] =
-        static_cast<unsigned char>(c);
-    arena.cursor[c] = page;
-    arena.limit[c] = page + kPage;
+  if (!cache.cursor[c] || cache.cursor[c] + size > cache.limit[c]) {
+    if (!new_page(c)) return nullptr;
+    if (FreeBlock* block = cache.free[c]) {  // taken up from a thread that ended
+      cache.free[c] = block->next;
+      return block;
+    }
   }
-  void* block = arena.cursor[c];
-  arena.cursor[c] += size;
+  void* block = cache.cursor[c];
+  cache.cursor[c] += size;
   return block;
 }
 
 bool deallocate(void* block) noexcept {
   if (!owns(block)) return false;
-  Lock lock;
-  const std::size_t c =
-      arena.page_class[static_cast<std::size_t>(static_cast<char*>(block) - arena.base) >> kPageShift];
+  const std::size_t c = class_of(block);
   auto* freed = static_cast<FreeBlock*>(block);
-  freed->next = arena.free[c];
-  arena.free[c] = freed;
+  freed->next = cache.free[c];
+  cache.free[c] = freed;
   return true;
 }
 
 std::size_t block_size(const void* block) noexcept {
-  if (!owns(block)) return 0;
-  return arena.page_class[static_cast<std::size_t>(static_cast<const char*>(block) - arena.base) >>
-                          kPageShift] *
-         kGranule;
+  return owns(block) ? class_of(block) * kGranule : 0;
 }
 
 void use_huge_pages() noexcept {
-  Lock lock;
-  if (!arena.base && (arena.tried || !reserve())) return;
+  if (!reserved()) return;
   // From the next page not yet given out, rounded up to a huge page: what is in use keeps its pages.
   constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
-  const auto from = (reinterpret_cast<std::uintptr_t>(arena.next_page) + kHugePage - 1) & ~(kHugePage - 1);
-  const auto to = reinterpret_cast<std::uintptr_t>(arena.end) & ~(kHugePage - 1);
+  const auto next = reinterpret_cast<std::uintptr_t>(shared.next_page.load(std::memory_order_relaxed));
+  const auto from = (next + kHugePage - 1) & ~(kHugePage - 1);
+  const auto to = reinterpret_cast<std::uintptr_t>(shared.end) & ~(kHugePage - 1);
   if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);
 }
 
