@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <unordered_set>
 
 #include "frontend/bundle_index.h"
 #include "frontend/deprecations.h"
@@ -777,10 +778,8 @@ bool Program::resolve(ModelInfo* model) {
   }
 
   // Index the entries; report duplicates within this one body.
-  std::map<std::string, const Entry*> declared;
-  std::map<std::string, const Entry*> assigned;
+  std::unordered_set<std::string> declared, assigned;
   for (const Entry& e : model->entries) {
-    const std::string key = join(e.path, e.path.size());
     model->by_parent[e.parent_key].push_back(e.index);
     const bool assigns = e.kind == Entry::Kind::Value || e.kind == Entry::Kind::Becomes;
     for (size_t n = 1; n < e.path.size(); ++n) {
@@ -791,18 +790,29 @@ bool Program::resolve(ModelInfo* model) {
         model->children_below[join(e.path, n - 1)].emplace_back(e.path[n - 1], assigns);
       }
     }
-    if (e.kind == Entry::Kind::Declare && !declared.emplace(key, &e).second) {
-      sink_.report(DiagCode::DuplicateAttribute, e.member->path.range, "Duplicate attribute name " + key);
-      ok = false;
-    }
-    if (e.kind == Entry::Kind::Value && !assigned.emplace(key, &e).second) {
-      sink_.report(DiagCode::DuplicateAssignment, e.member->path.range, "Duplicate assignment to " + key);
+    if (e.kind != Entry::Kind::Declare && e.kind != Entry::Kind::Value) continue;
+    const bool declares = e.kind == Entry::Kind::Declare;
+    auto [key, fresh] = (declares ? declared : assigned).insert(join(e.path, e.path.size()));
+    if (!fresh) {
+      sink_.report(declares ? DiagCode::DuplicateAttribute : DiagCode::DuplicateAssignment,
+                   e.member->path.range,
+                   (declares ? "Duplicate attribute name " : "Duplicate assignment to ") + *key);
       ok = false;
     }
   }
-  // Attribute names are unique across the base chain and traits.
+  // Attribute names are unique across the base chain and traits. The inherited names first, so that a
+  // model declaring thousands of attributes compares each with them once.
+  std::unordered_set<std::string_view> inherited;
+  for (size_t k = 1; k < model->linearization.size(); ++k) {
+    auto it = model->linearization[k]->by_parent.find("");
+    if (it == model->linearization[k]->by_parent.end()) continue;
+    for (uint32_t index : it->second) {
+      const Entry& o = model->linearization[k]->entries[index];
+      if (o.kind == Entry::Kind::Declare) inherited.insert(o.path[0]);
+    }
+  }
   for (const Entry& e : model->entries) {
-    if (e.kind != Entry::Kind::Declare || e.path.size() != 1) continue;
+    if (e.kind != Entry::Kind::Declare || e.path.size() != 1 || !inherited.count(e.path[0])) continue;
     for (size_t k = 1; k < model->linearization.size(); ++k) {
       ModelInfo* other = model->linearization[k];
       auto it = other->by_parent.find("");
