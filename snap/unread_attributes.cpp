@@ -1,6 +1,7 @@
 #include "snap/unread_attributes.h"
 
 #include <set>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -64,15 +65,33 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
   // the slots that may be warned about, in order. An assignment is honoured when it was read in any instance
   // it binds: instances that share their entries are evaluated only as far as something reads them
   // (Evaluator::evaluate_layouts).
+  // Only slots bound by the user's own entries matter, and instances of one layout have them at the same
+  // places: found once per layout.
   std::unordered_set<const fe::Entry*> read;
   std::vector<std::pair<fe::ObjectId, uint32_t>> candidates;
+  std::unordered_map<uint32_t, std::vector<uint32_t>> user_bound;  // by layout (0: none, found per object)
+  std::vector<uint32_t> own;
   for (fe::ObjectId id = 0; id < graph.objects.size(); ++id) {
     const fe::Object& obj = graph.at(id);
+    const std::vector<uint32_t>* slots = &own;
+    auto find = [&](std::vector<uint32_t>& out) {
+      out.clear();
+      for (uint32_t k = 0; k < obj.slots.size(); ++k) {
+        const fe::Slot& slot = obj.slots[k];
+        if (slot.binding.entry && !in_bundle(slot.binding.model)) out.push_back(k);
+      }
+    };
+    if (obj.layout == 0) {
+      find(own);
+    } else {
+      auto [it, fresh] = user_bound.try_emplace(obj.layout);
+      if (fresh) find(it->second);
+      slots = &it->second;
+    }
     const bool checked = mapped[id] == 1 && !is_math(obj);
-    for (uint32_t k = 0; k < obj.slots.size(); ++k) {
+    for (uint32_t k : *slots) {
       const fe::Slot& slot = obj.slots[k];
-      if (!slot.binding.entry) continue;
-      if (slot.used && !in_bundle(slot.binding.model)) read.insert(slot.binding.entry);
+      if (slot.used) read.insert(slot.binding.entry);
       if (checked && user_assignment_to_bundle(slot)) candidates.emplace_back(id, k);
     }
   }
