@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # What a user sees: `openplx2mjcf model.openplx -o model.xml` as a whole process, against MuJoCo's own
-# compiler (`mujoco-compile model.xml model.mjb`) on the file we wrote, in the same run, interleaved by
-# hyperfine. Prints medians, their ratio, and each process's peak memory (GNU time).
+# compiler (`mujoco-compile model.xml model.mjb`) on the file we wrote, in the same run. Prints medians, their
+# ratio, and each process's peak memory (GNU time).
+#
+# The two commands take turns, run by run (A B B A ...): a virtual machine's speed drifts by tens of percent
+# over seconds, and a harness that runs all of one command before the other (hyperfine does) then compares
+# two different machines. Each run is timed by bash's own clock around the process (no helper process).
 #
 #   bench/whole_process.sh [BUILD_DIR]     default: build
-#   RUNS=N (default 7) sets hyperfine's runs per command.
+#   RUNS=N (default 7) sets the runs per command (after two warm-up rounds).
 #
 # Models: 1,000 and 10,000 hinged boxes on the world (generated here), the README's wide tree of trunks with
 # nine branches (1,000 bodies), small corpus models and two of bullet3's URDF robots.
@@ -13,7 +17,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 converter=$(realpath "$build/tools/openplx2mjcf")
 runs=${RUNS:-7}
-for tool in hyperfine mujoco-compile /usr/bin/time; do
+for tool in mujoco-compile /usr/bin/time; do
   command -v "$tool" >/dev/null || { echo "error: $tool is missing (tools/install-deps.sh installs it)" >&2; exit 2; }
 done
 work=$(mktemp -d)
@@ -69,18 +73,39 @@ tree() {
 
 peak_kb() { /usr/bin/time -f '%M' "$@" 2>&1 >/dev/null | tail -1; }
 
-# One model: convert once (the MJCF is MuJoCo's input), then time both processes interleaved.
+# Wall-clock milliseconds of one run of a command (its output files removed first, as a user's run finds them).
+time_ms() {
+  rm -f "$work/out.mjb" "$work/out.xml" "$work/out.signals.json"
+  local start=$EPOCHREALTIME
+  "$@" >/dev/null 2>&1
+  local end=$EPOCHREALTIME
+  awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f\n", (b - a) * 1000 }'
+}
+
+median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+# One model: convert once (the MJCF is MuJoCo's input), then time both processes taking turns.
 measure() {
   local label=$1 model=$2
   local xml=$work/$(basename "${model%.*}").xml
   "$converter" "$model" -o "$xml" 2>/dev/null
-  # Both write fresh files (mujoco-compile would ask before overwriting; replacing a file makes ext4 flush it).
-  hyperfine -N --style none --warmup 2 --runs "$runs" --export-json "$work/h.json" \
-    --prepare "rm -f $work/out.mjb $work/out.xml $work/out.signals.json" \
-    "$converter $model -o $work/out.xml" "mujoco-compile $xml $work/out.mjb" >/dev/null 2>&1
+  local ours_runs=() theirs_runs=()
+  for ((i = 0; i < runs + 2; ++i)); do
+    local a b
+    if ((i % 2)); then
+      b=$(time_ms mujoco-compile "$xml" "$work/out.mjb")
+      a=$(time_ms "$converter" "$model" -o "$work/out.xml")
+    else
+      a=$(time_ms "$converter" "$model" -o "$work/out.xml")
+      b=$(time_ms mujoco-compile "$xml" "$work/out.mjb")
+    fi
+    ((i < 2)) && continue  # warm-up: the files and the binaries in the page cache
+    ours_runs+=("$a")
+    theirs_runs+=("$b")
+  done
   local ours theirs
-  ours=$(sed -n 's/.*"median": *\([0-9.e-]*\).*/\1/p' "$work/h.json" | sed -n 1p)
-  theirs=$(sed -n 's/.*"median": *\([0-9.e-]*\).*/\1/p' "$work/h.json" | sed -n 2p)
+  ours=$(printf '%s\n' "${ours_runs[@]}" | median | awk '{ print $1 / 1000 }')
+  theirs=$(printf '%s\n' "${theirs_runs[@]}" | median | awk '{ print $1 / 1000 }')
   rm -f "$work/out.mjb"
   local mem_ours mem_theirs
   mem_ours=$(peak_kb "$converter" "$model" -o "$work/out.xml")
@@ -93,7 +118,7 @@ measure() {
   echo "$ours" >"$work/last"
 }
 
-echo "openplx2mjcf against mujoco-compile of its own output: medians of $runs interleaved runs, peak RSS"
+echo "openplx2mjcf against mujoco-compile of its own output: medians of $runs runs taking turns, peak RSS"
 echo
 echo "| model | openplx2mjcf | mujoco-compile | time ratio | peak memory | MuJoCo's | memory ratio |"
 echo "|---|---|---|---|---|---|---|"

@@ -317,10 +317,46 @@ void Evaluator::owner_chain(ObjectId id, std::vector<ObjectId>& chain) const {
   std::reverse(chain.begin(), chain.end());
 }
 
+uint32_t Evaluator::reach_state(const std::vector<ObjectId>& chain) {
+  ReachState state;
+  const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
+  for (uint32_t i = 0; i <= own_level; ++i) {
+    const EntryReach::Node* node = entry_reach_.root(graph_.at(chain[i]).type);
+    for (uint32_t k = i + 1; node && k <= own_level; ++k)
+      node = EntryReach::step(node, graph_.at(chain[k]).name);
+    // A node with nothing below it cannot reach a part: left out, so that instances differing only there
+    // (each hinge assigned its own connectors) share their parts' layouts.
+    if (node && !node->below.empty()) state.emplace_back(own_level - i, node);
+  }
+  return reach_ids_.try_emplace(std::move(state), static_cast<uint32_t>(reach_ids_.size() + 1)).first->second;
+}
+
 void Evaluator::build_slots(ObjectId id) {
   std::vector<ObjectId>& chain = chain_;  // reused, building slots creates no objects
   owner_chain(id, chain);
   const uint32_t own_level = static_cast<uint32_t>(chain.size() - 1);
+  // A part of an owner whose reach state is known: its layout was worked out for the first such part.
+  PartKey part{0, 0, nullptr, graph_.at(id).type};
+  if (const ObjectId owner = graph_.at(id).owner; owner != kNoObject && graph_.at(owner).reach) {
+    const Object& o = graph_.at(owner);
+    if (auto slot = o.index->find(graph_.at(id).name); slot != o.index->end()) {
+      part = {o.reach, slot->second, o.index.get(), graph_.at(id).type};
+      if (auto it = part_layouts_.find(part); it != part_layouts_.end()) {
+        copy_layout(id, *it->second.layout, chain, own_level);
+        graph_.at(id).reach = it->second.reach;
+        return;
+      }
+    }
+  }
+  build_slots_by_key(id, chain, own_level);
+  graph_.at(id).reach = reach_state(chain);
+  if (part.owner_reach) {
+    if (auto it = layouts_.find(full_layout_key_); it != layouts_.end())
+      part_layouts_.emplace(part, PartLayout{&it->second, graph_.at(id).reach});
+  }
+}
+
+void Evaluator::build_slots_by_key(ObjectId id, const std::vector<ObjectId>& chain, uint32_t own_level) {
   // An instance's layout (its slots, their types and the entries that bind them) is decided by its type and
   // by the enclosing models whose entries reach it, each at its distance and relative path. Instances
   // that agree on all of that (the inertia of every Link, the outputs of every body) share one layout:
@@ -610,6 +646,7 @@ void Evaluator::preset(ObjectId object, std::string_view name, Value value) {
     child.owner = object;
     child.name = std::string(name);
     child.depth = obj.depth + 1;
+    forget_reach(slot.value.object);  // worked out where it was made, free
   }
 }
 
@@ -619,6 +656,14 @@ bool Evaluator::reached_by_entries(ObjectId id) const {
   bool reached = false;
   for_each_reaching(chain, [&](uint32_t, const EntryReach::Node&) { return reached = true; });
   return reached;
+}
+
+void Evaluator::forget_reach(ObjectId id) {
+  Object& obj = graph_.at(id);
+  obj.reach = 0;
+  for (const Slot& slot : obj.slots) {
+    if (slot.owns && slot.value.kind == Value::Kind::Object) forget_reach(slot.value.object);
+  }
 }
 
 void Evaluator::move_free_subtree(ObjectId id, uint32_t levels) {
@@ -637,6 +682,7 @@ void Evaluator::adopt(ObjectId child, ObjectId owner, const std::string& name, u
     obj.name = name;
     obj.depth = graph_.at(owner).depth + 1;
   }
+  forget_reach(child);  // worked out where it was made, free; its parts' layouts are found afresh
   // Most values (`main_axis: Math.Vec3.Y_AXIS()`) have no entries aimed at their parts: their bindings
   // stay, a level deeper for every level above them.
   if (!reached_by_entries(child)) {

@@ -9,6 +9,7 @@
 
 #include <deque>
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -143,6 +144,7 @@ class Evaluator {
   ObjectId new_object(ModelInfo* type, ObjectId owner, std::string name);
   bool owns_transitively(ObjectId owner, ObjectId id) const;
   void build_slots(ObjectId id);
+  void build_slots_by_key(ObjectId id, const std::vector<ObjectId>& chain, uint32_t own_level);
   // Whether `type`'s entries at `rel` only assign values to attributes (no declarations, `becomes`, `with`,
   // annotations or entries on parts): such entries bind an instance without changing its layout.
   bool assigns_only(const ModelInfo* type, const std::string& rel) const;
@@ -247,6 +249,31 @@ class Evaluator {
   };
   void copy_layout(ObjectId id, const Layout& layout, const std::vector<ObjectId>& chain, uint32_t own_level);
   std::unordered_map<std::string, Layout> layouts_;
+  // Reach states: for an instance, every enclosing model's (and its own type's) node of entries that goes
+  // down to it, with its distance. A part's layout follows from its owner's reach state, its attribute and
+  // its type, so each combination is worked out once (build_slots) and then copied.
+  using ReachState = std::vector<std::pair<uint32_t, const EntryReach::Node*>>;
+  uint32_t reach_state(const std::vector<ObjectId>& chain);
+  void forget_reach(ObjectId id);  // a value adopted with its parts: their reach states no longer hold
+  std::map<ReachState, uint32_t> reach_ids_;
+  struct PartKey {  // the owner's reach state and slot (its index names the slot), the part's type
+    uint32_t owner_reach;
+    uint32_t slot;
+    const SlotIndex* index;
+    const ModelInfo* type;
+    bool operator==(const PartKey&) const = default;
+  };
+  struct PartKeyHash {
+    size_t operator()(const PartKey& k) const {
+      const std::hash<const void*> h;
+      return h(k.type) ^ h(k.index) * 31 ^ (size_t{k.owner_reach} << 32 | k.slot) * 0x9e3779b97f4a7c15ull;
+    }
+  };
+  struct PartLayout {
+    const Layout* layout;
+    uint32_t reach;
+  };
+  std::unordered_map<PartKey, PartLayout, PartKeyHash> part_layouts_;
   uint32_t next_layout_ = 1;
   mutable EntryReach entry_reach_;             // built per type on first use
   std::vector<ObjectId> chain_;                // build_slots' ancestor chain

@@ -74,6 +74,9 @@ struct Object {  // fields ordered so that none pads: there is one per instance
   std::string name;  // attribute name in the owner; the model name for roots and const singletons
   const Entry* created_by = nullptr;  // the declaration of the owning attribute, for owned defaults
   uint32_t layout = 0;  // instances with one layout have the same slots bound by the same entries
+  // Where the entries of it and its owners reach (Evaluator::build_slots); 0 when unknown (a value adopted
+  // after it was made).
+  uint32_t reach = 0;
   bool is_const_singleton = false;
   // An owned default no entry assigns or reaches into: its values are its type's alone, the same in every
   // such instance (Evaluator::checked_default).
