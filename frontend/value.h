@@ -53,7 +53,12 @@ struct Value {
   };
 
   Value() = default;
-  Value(const Value& other) { *this = other; }
+  Value(const Value& other)
+      : kind(other.kind),
+        bool_value(other.bool_value),
+        object(other.object),
+        int_value(other.int_value),  // the whole union, whichever member it holds
+        payload_(other.payload_ ? std::make_unique<Payload>(*other.payload_) : nullptr) {}
   Value(Value&&) noexcept = default;
   Value& operator=(const Value& other);
   Value& operator=(Value&&) noexcept = default;
