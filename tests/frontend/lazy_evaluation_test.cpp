@@ -50,6 +50,22 @@ Conversion convert(const fs::path& model, const fs::path& dir, bool eager) {
   return c;
 }
 
+// A model evaluated lazily (as the converter does) and its resolved system.
+struct Resolved {
+  openplx::frontend::SourceManager sources;
+  openplx::frontend::DiagnosticSink sink;
+  openplx::frontend::Evaluation evaluation;
+  openplx::snap::ResolvedSystem view;
+};
+
+void resolve_lazily(const fs::path& model, Resolved& out) {
+  ::unsetenv("OPENPLX_EVALUATE_EVERYTHING");
+  out.evaluation = openplx::frontend::evaluate_file({model.string(), std::nullopt, {}, std::nullopt},
+                                                    out.sources, out.sink);
+  ASSERT_NE(out.evaluation.root, openplx::frontend::kNoObject);
+  out.view = openplx::snap::resolve_system(*out.evaluation.evaluator, out.evaluation.root, out.sink);
+}
+
 std::vector<fs::path> models() {
   std::vector<fs::path> found;
   for (const char* root : {OPENPLX_SAMPLES_DIR, OPENPLX_VENDORED_CORPUS_DIR "/agxunity"}) {
@@ -122,18 +138,12 @@ TEST(LazyEvaluation, UntouchedDefaultsOfOneTypeAreMadeOnce) {
     }
   }
   namespace fe = openplx::frontend;
-  ::unsetenv("OPENPLX_EVALUATE_EVERYTHING");
-  fe::SourceManager sources;
-  fe::DiagnosticSink sink;
-  fe::Evaluation evaluation =
-      fe::evaluate_file({model.string(), std::nullopt, {}, std::nullopt}, sources, sink);
-  ASSERT_NE(evaluation.root, fe::kNoObject);
-  const openplx::snap::ResolvedSystem view =
-      openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-  ASSERT_FALSE(sink.has_errors());
-  ASSERT_EQ(view.mates.size(), 4u);
+  Resolved resolved;
+  ASSERT_NO_FATAL_FAILURE(resolve_lazily(model, resolved));
+  ASSERT_FALSE(resolved.sink.has_errors());
+  ASSERT_EQ(resolved.view.mates.size(), 4u);
   size_t flexibilities = 0, dissipations = 0, marshallings = 0;
-  const fe::ObjectGraph& graph = evaluation.evaluator->graph();
+  const fe::ObjectGraph& graph = resolved.evaluation.evaluator->graph();
   for (fe::ObjectId id = 0; id < graph.objects.size(); ++id) {
     const std::string& type = graph.at(id).type->qualified;
     flexibilities += type == "Physics3D.Interactions.Flexibility.DefaultHingeFlexibility";
@@ -186,15 +196,10 @@ TEST(LazyEvaluation, VectorsWrittenAlikeAreReadOnceAndKeepEachInstancesOwnValue)
                           "    d is Link:\n"
                           "        width: 5\n";
   namespace fe = openplx::frontend;
-  ::unsetenv("OPENPLX_EVALUATE_EVERYTHING");
-  fe::SourceManager sources;
-  fe::DiagnosticSink sink;
-  fe::Evaluation evaluation =
-      fe::evaluate_file({model.string(), std::nullopt, {}, std::nullopt}, sources, sink);
-  ASSERT_NE(evaluation.root, fe::kNoObject);
-  const openplx::snap::ResolvedSystem view =
-      openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-  ASSERT_FALSE(sink.has_errors());
+  Resolved resolved;
+  ASSERT_NO_FATAL_FAILURE(resolve_lazily(model, resolved));
+  ASSERT_FALSE(resolved.sink.has_errors());
+  const openplx::snap::ResolvedSystem& view = resolved.view;
   std::map<std::string, Eigen::Vector3d> at;
   for (const auto& c : view.connectors) at[c.path] = c.local.position;
   for (const auto& g : view.geometries) at[g.path] = g.size;
@@ -210,7 +215,7 @@ TEST(LazyEvaluation, VectorsWrittenAlikeAreReadOnceAndKeepEachInstancesOwnValue)
     EXPECT_TRUE(at[path].isApprox(vector)) << path << ": " << at[path].transpose();
   }
   // a and c share a layout: c's size and top position were read from a's entries, not made again.
-  const fe::Object& c = evaluation.evaluator->graph().at(view.geometries[2].object);
+  const fe::Object& c = resolved.evaluation.evaluator->graph().at(view.geometries[2].object);
   ASSERT_EQ(view.geometries[2].path, "c.geometry");
   EXPECT_EQ(c.find("size")->state, fe::Slot::State::Pending);
 }
