@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 
 packages=(cmake make g++ pkg-config clang-format
   libmujoco-dev libqhull-dev libmujoco-samples libeigen3-dev liburdfdom-dev libtinyxml2-dev
-  libgtest-dev libbenchmark-dev nlohmann-json3-dev hyperfine time)
+  libgtest-dev libbenchmark-dev nlohmann-json3-dev time)
 tests=0
 for arg in "$@"; do
   case "$arg" in
