@@ -1122,6 +1122,32 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
     return entity;
   }
   if (e.kind == ExprKind::Member) {
+    // A dotted name of a model or namespace (`Math.Vec3` in `Math.Vec3.Y_AXIS()`) means the same wherever
+    // its text is, unless its first name is an attribute of the instance: resolved once per expression.
+    std::string& key = static_name_key_;  // the document, then the names from the last
+    key.assign(reinterpret_cast<const char*>(&scope.doc), sizeof(scope.doc));
+    const Expr* head = &e;
+    for (; head->kind == ExprKind::Member; head = &doc.expr(head->operands[0])) (key += head->text) += '.';
+    const bool static_name = head->kind == ExprKind::Name &&
+                             (scope.self == kNoObject || !graph_.at(scope.self).index->count(head->text));
+    if (static_name) {
+      key += head->text;
+      if (auto it = static_names_.find(key); it != static_names_.end()) return it->second;
+    }
+    std::string found = static_name ? key : std::string();  // the buffer is reused by nested lookups
+    const size_t reported = sink_.diagnostics().size();
+    entity = eval_member_entity(e, scope);
+    if (static_name && entity.kind != Entity::Kind::Value && sink_.diagnostics().size() == reported)
+      static_names_.emplace(std::move(found), entity);
+    return entity;
+  }
+  entity.value = eval(id, scope, nullptr);
+  return entity;
+}
+
+Evaluator::Entity Evaluator::eval_member_entity(const Expr& e, const Scope& scope) {
+  Entity entity;
+  {
     Entity target = eval_entity(e.operands[0], scope);
     switch (target.kind) {
       case Entity::Kind::Value:
@@ -1166,7 +1192,6 @@ Evaluator::Entity Evaluator::eval_entity(ExprId id, const Scope& scope) {
       }
     }
   }
-  entity.value = eval(id, scope, nullptr);
   return entity;
 }
 

@@ -195,6 +195,10 @@ class Evaluator {
 
   Value eval(ExprId expr, const Scope& scope, const Type* expected);
   Entity eval_entity(ExprId expr, const Scope& scope);
+  Entity eval_member_entity(const Expr& member, const Scope& scope);
+  // eval_entity's dotted model and namespace names, by document and text (a thousand `Math.Vec3.Y_AXIS()`).
+  std::unordered_map<std::string, Entity> static_names_;
+  std::string static_name_key_;
   Value member_of(const Value& object, std::string_view name, SourceRange where);
   Value eval_call(const Expr& call, const Scope& scope);
   struct PreparedMethod {

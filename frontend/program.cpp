@@ -540,6 +540,13 @@ ModelInfo* Program::resolve_model_name(DocumentInfo* doc, const QualifiedName& n
 }
 
 ModelInfo* Program::builtin_model(std::string_view qualified) {
+  if (auto it = builtin_models_.find(qualified); it != builtin_models_.end()) return it->second;
+  ModelInfo* model = find_builtin_model(qualified);
+  if (model) builtin_models_.emplace(qualified, model);  // a name found never changes its meaning
+  return model;
+}
+
+ModelInfo* Program::find_builtin_model(std::string_view qualified) {
   Namespace* ns = nullptr;
   Symbol s;
   size_t start = 0;

@@ -210,6 +210,13 @@ class Program {
   std::deque<ModelInfo> models_;
   std::deque<GlobalInfo> globals_;
   std::vector<OperatorInfo> operators_;
+  // builtin_model's answers by name (natives make a Math.Vec3 for every vector they return).
+  struct NameHash {
+    using is_transparent = void;
+    size_t operator()(std::string_view name) const { return std::hash<std::string_view>()(name); }
+  };
+  std::unordered_map<std::string, ModelInfo*, NameHash, std::equal_to<>> builtin_models_;
+  ModelInfo* find_builtin_model(std::string_view qualified);  // builtin_model without its memo
   std::map<std::string, DocumentInfo*> loaded_files_;  // absolute path -> document
   std::deque<LazyFile> lazy_files_;
   std::unordered_map<std::string, LazyFile*> lazy_by_path_;  // absolute path -> file waiting for a lookup
