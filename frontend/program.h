@@ -217,7 +217,7 @@ class Program {
   };
   std::unordered_map<std::string, ModelInfo*, NameHash, std::equal_to<>> builtin_models_;
   ModelInfo* find_builtin_model(std::string_view qualified);  // builtin_model without its memo
-  std::map<std::string, DocumentInfo*> loaded_files_;  // absolute path -> document
+  std::map<std::string, DocumentInfo*> loaded_files_;         // absolute path -> document
   std::deque<LazyFile> lazy_files_;
   std::unordered_map<std::string, LazyFile*> lazy_by_path_;  // absolute path -> file waiting for a lookup
 };
