@@ -156,24 +156,29 @@ bool deallocate(void* block) noexcept {
   return true;
 }
 
+char* frontier() noexcept {
+  return shared.next_page.load(std::memory_order_relaxed);
+}
+
 std::size_t block_size(const void* block) noexcept {
   return owns(block) ? class_of(block) * kGranule : 0;
 }
 
-void use_huge_pages() noexcept {
-  if (!reserved()) return;
+char* use_huge_pages() noexcept {
+  if (!reserved()) return nullptr;
   // From the next page not yet given out, rounded up to a huge page: what is in use keeps its pages.
   constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
   char* next = shared.next_page.load(std::memory_order_relaxed);
   const auto from = (reinterpret_cast<std::uintptr_t>(next) + kHugePage - 1) & ~(kHugePage - 1);
   const auto to = reinterpret_cast<std::uintptr_t>(shared.end) & ~(kHugePage - 1);
-  if (to <= from || madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE) != 0) return;
+  if (to <= from || madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE) != 0) return nullptr;
   // New pages start at the huge page: the rest of the partly used one would be faulted in 4 KiB at a time
   // (up to 512 faults, each about 10 us on a virtual machine). Its untouched pages cost address space only.
   while (next < reinterpret_cast<char*>(from) &&
          !shared.next_page.compare_exchange_weak(next, reinterpret_cast<char*>(from),
                                                  std::memory_order_relaxed)) {
   }
+  return reinterpret_cast<char*>(from);
 }
 
 }  // namespace openplx::cli::arena
