@@ -20,6 +20,9 @@ namespace {
 constexpr uintptr_t kHugePage = 2u << 20;
 
 std::atomic<uintptr_t> heap_frontier{0};  // the end of the highest heap block operator new has handed out
+// The block that covers the heap below its first huge page: kept, never touched; volatile, or the compiler
+// drops an allocation nobody reads.
+void* volatile below_first_huge_page = nullptr;
 
 // A range that fills from its bottom, faulted in up to `cap`, a huge page ahead of where it is used.
 struct Region {
@@ -89,8 +92,7 @@ void reserve_huge_page_heap(size_t bytes, size_t prefault_bytes) {
     // malloc hands out the top chunk from its bottom, in the small pages below `first`: a block kept and
     // never touched covers them, so the next one starts on the first huge page (its chunk is first - begin
     // bytes, 8 more than asked for).
-    static void* below_first_huge_page = malloc(first - begin - 8);
-    (void)below_first_huge_page;
+    below_first_huge_page = malloc(first - begin - 8);
   }
   const auto arena_pages = reinterpret_cast<uintptr_t>(arena::use_huge_pages());  // where operator new's
                                                                                   // small blocks come from
