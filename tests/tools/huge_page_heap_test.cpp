@@ -1,6 +1,6 @@
 // The converter's heap set-up (tools/cli/huge_page_heap.h): the arena's next pages start on a huge page, a
-// thread faults in memory ahead of where the heap and the arena are in use and no further than asked, and
-// what the program writes meanwhile is never changed. Each test is a process of its own (ctest runs them one
+// thread faults in memory ahead of where the arena is in use and no further than asked, and what the
+// program writes meanwhile is never changed. Each test is a process of its own (ctest runs them one
 // by one), so the process-wide malloc settings it makes stay there.
 #include <gtest/gtest.h>
 #include <sys/mman.h>
@@ -65,40 +65,42 @@ TEST(HugePageHeap, TheArenasNextPagesStartOnAHugePage) {
   EXPECT_EQ(static_cast<unsigned char*>(before)[47], 0x5a);
 }
 
-TEST(HugePageHeap, PagesAheadOfTheHeapInUseAreFaultedInAndNoFurtherThanAsked) {
+// Takes 2 KiB blocks until the arena's new pages come from `offset` bytes above `base` (taking a block
+// does not touch it).
+void take_arena_up_to(uintptr_t base, uintptr_t offset) {
+  while (reinterpret_cast<uintptr_t>(cli::arena::frontier()) < base + offset)
+    ASSERT_NE(cli::arena::allocate(2048), nullptr);
+}
+
+TEST(HugePageHeap, PagesAheadOfTheArenaInUseAreFaultedInAndNoFurtherThanAsked) {
   if (!huge_pages_available()) GTEST_SKIP() << "no transparent huge pages here";
   constexpr size_t kPrefault = size_t{8} << 20;
-  cli::reserve_huge_page_heap(size_t{256} << 20, kPrefault);
-  // Blocks come from the reserved heap (no mmap), from its bottom up, which is its first huge page.
-  auto* block = static_cast<unsigned char*>(std::malloc(size_t{1} << 20));
-  ASSERT_NE(block, nullptr);
-  const auto first = reinterpret_cast<uintptr_t>(block) & ~(kHugePage - 1);
-  cli::note_heap_block(block, size_t{1} << 20);
+  cli::reserve_huge_page_heap(size_t{64} << 20, kPrefault);
+  const auto base = reinterpret_cast<uintptr_t>(cli::arena::frontier());
+  take_arena_up_to(base, size_t{1} << 20);
   // The huge page after the one in use is faulted in without anyone touching it, and no more: a quarter of
   // a second later the one after that is still untouched.
-  EXPECT_TRUE(becomes_resident(first + kHugePage + 4096));
+  EXPECT_TRUE(becomes_resident(base + kHugePage + 4096));
   std::this_thread::sleep_for(std::chrono::milliseconds(250));
-  EXPECT_FALSE(resident(first + 2 * kHugePage + 4096));
+  EXPECT_FALSE(resident(base + 2 * kHugePage + 4096));
   // In use far up: faulted in up to the limit asked for, not beyond.
-  cli::note_heap_block(block, size_t{64} << 20);
-  EXPECT_TRUE(becomes_resident(first + kPrefault - 4096));
+  take_arena_up_to(base, size_t{32} << 20);
+  EXPECT_TRUE(becomes_resident(base + kPrefault - 4096));
   std::this_thread::sleep_for(std::chrono::milliseconds(250));
-  EXPECT_FALSE(resident(first + kPrefault + 4096));
-  std::free(block);
+  EXPECT_FALSE(resident(base + kPrefault + 4096));
 }
 
 TEST(HugePageHeap, WhatTheProgramWritesWhilePagesAreFaultedInStaysWritten) {
   if (!huge_pages_available()) GTEST_SKIP() << "no transparent huge pages here";
   constexpr size_t kPrefault = size_t{48} << 20;
   cli::reserve_huge_page_heap(size_t{128} << 20, kPrefault);
-  // Heap and arena blocks written as fast as they are taken, racing the thread that faults their pages in.
+  // Heap and arena blocks written as fast as they are taken, racing the thread that faults pages in.
   std::vector<std::pair<unsigned char*, size_t>> heap_blocks;
   std::vector<unsigned char*> arena_blocks;
   for (int i = 0; i < 400; ++i) {
     const size_t size = 64 << 10;
     auto* heap = static_cast<unsigned char*>(std::malloc(size));
     ASSERT_NE(heap, nullptr);
-    cli::note_heap_block(heap, size);
     std::memset(heap, i & 0xff, size);
     heap_blocks.emplace_back(heap, size);
     for (int k = 0; k < 64; ++k) {

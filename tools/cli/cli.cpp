@@ -164,8 +164,8 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
     // text; a small one does not pay for the reservation.
     const uintmax_t size = std::filesystem::file_size(options.input, ec);
     // Capped: only touched pages cost memory, but a reservation need not outgrow any machine.
-    // Prefaulted: 48 bytes of heap and of arena per byte of text, below the 70-80 a plain model uses of
-    // each (boxes, trees), so that a model that needs less, or text that is mostly comments, gains little
+    // Prefaulted: 48 bytes of small-block arena per byte of text, below the 70-80 a plain model uses
+    // (boxes, trees), so that a model that needs less, or text that is mostly comments, gains little
     // resident memory it does not use.
     if (!ec && size >= kHugePageInputBytes)
       reserve_huge_page_heap(std::min<uintmax_t>(size * 512, 2ull << 30), size * 48);

@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -19,53 +18,33 @@ namespace {
 
 constexpr uintptr_t kHugePage = 2u << 20;
 
-std::atomic<uintptr_t> heap_frontier{0};  // the end of the highest heap block operator new has handed out
 // The block that covers the heap below its first huge page: kept, never touched; volatile, or the compiler
 // drops an allocation nobody reads.
 void* volatile below_first_huge_page = nullptr;
-
-// A range that fills from its bottom, faulted in up to `cap`, a huge page ahead of where it is used.
-struct Region {
-  uintptr_t populated;  // faulted in below this
-  uintptr_t cap;
-};
 
 uintptr_t huge_page_above(uintptr_t address) {
   return (address + kHugePage - 1) & ~(kHugePage - 1);
 }
 
-// Faults in the heap's and the arena's next huge page before the conversion reaches it, on a core the
+// Faults in the arena's next huge page before the conversion reaches it, up to `cap`, on a core the
 // conversion does not use: on a virtual machine a fresh page costs far more (the host backs it) than the
-// few microseconds of work the conversion does on it. MADV_POPULATE_WRITE faults a page in without writing
-// to it, so it cannot race with what the conversion writes there.
-void prefault(Region heap, Region arena) {
-  for (;;) {
-    bool faulted = false;
-    const uintptr_t reached[2] = {heap_frontier.load(std::memory_order_relaxed),
-                                  reinterpret_cast<uintptr_t>(arena::frontier())};
-    Region* regions[2] = {&heap, &arena};
-    for (int i = 0; i < 2; ++i) {
-      Region& r = *regions[i];
-      const uintptr_t wanted = std::min(r.cap, huge_page_above(reached[i]) + kHugePage);
-      if (r.populated >= wanted) continue;
-      if (madvise(reinterpret_cast<void*>(r.populated), kHugePage, MADV_POPULATE_WRITE) != 0)
-        r.cap = 0;  // an older kernel (before 5.14): no prefaulting
-      r.populated += kHugePage;
-      faulted = true;
+// work the conversion does on it. MADV_POPULATE_WRITE faults a page in without writing to it, so it cannot
+// race with what the conversion writes there. (The heap is left alone: its large blocks leave capacity they
+// never touch, which faulting in would add to the resident memory.)
+void prefault(uintptr_t populated, uintptr_t cap) {
+  while (populated < cap) {
+    const auto reached = reinterpret_cast<uintptr_t>(arena::frontier());
+    if (populated >= huge_page_above(reached) + kHugePage) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      continue;
     }
-    if (heap.populated >= heap.cap && arena.populated >= arena.cap) return;
-    if (!faulted) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    // An older kernel (before 5.14) has no MADV_POPULATE_WRITE: then nothing is prefaulted.
+    if (madvise(reinterpret_cast<void*>(populated), kHugePage, MADV_POPULATE_WRITE) != 0) return;
+    populated += kHugePage;
   }
 }
 
 }  // namespace
-
-void note_heap_block(const void* block, size_t bytes) noexcept {
-  const uintptr_t end = reinterpret_cast<uintptr_t>(block) + bytes;
-  uintptr_t seen = heap_frontier.load(std::memory_order_relaxed);
-  while (end > seen && !heap_frontier.compare_exchange_weak(seen, end, std::memory_order_relaxed)) {
-  }
-}
 
 void reserve_huge_page_heap(size_t bytes, size_t prefault_bytes) {
 #if defined(__SANITIZE_ADDRESS__)
@@ -87,18 +66,17 @@ void reserve_huge_page_heap(size_t bytes, size_t prefault_bytes) {
   const uintptr_t first = huge_page_above(begin);
   const uintptr_t last = end & ~(kHugePage - 1);
   // Without THP (kernel setting "never") this fails harmlessly and the heap keeps small pages.
-  const bool huge = last > first && madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0;
-  if (huge && first - begin >= 64) {
+  if (last > first && madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE) == 0 &&
+      first - begin >= 64) {
     // malloc hands out the top chunk from its bottom, in the small pages below `first`: a block kept and
     // never touched covers them, so the next one starts on the first huge page (its chunk is first - begin
     // bytes, 8 more than asked for).
     below_first_huge_page = malloc(first - begin - 8);
   }
-  const auto arena_pages = reinterpret_cast<uintptr_t>(arena::use_huge_pages());  // where operator new's
-                                                                                  // small blocks come from
-  Region heap{first, huge ? first + std::min<uintptr_t>(prefault_bytes, last - first) : 0};
-  Region arena{arena_pages, arena_pages ? arena_pages + prefault_bytes : 0};
-  if (heap.cap > heap.populated || arena.cap > arena.populated) std::thread(prefault, heap, arena).detach();
+  // Where operator new's small blocks come from.
+  if (const auto arena_pages = reinterpret_cast<uintptr_t>(arena::use_huge_pages());
+      arena_pages && prefault_bytes)
+    std::thread(prefault, arena_pages, arena_pages + prefault_bytes).detach();
 #endif
 }
 

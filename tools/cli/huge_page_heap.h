@@ -8,13 +8,10 @@
 namespace openplx::cli {
 
 // Grows the malloc heap by `bytes` (kept, not trimmed) and marks it and the small-object arena for
-// transparent huge pages. A thread of its own then faults in up to `prefault_bytes` of each, a huge page
-// ahead of the conversion (see note_heap_block), so the kernel's work of backing fresh pages is done on the
-// other core. For the converter process only: it changes malloc's thresholds for the rest of the process.
+// transparent huge pages. A thread of its own then faults in up to `prefault_bytes` of the arena, a huge page
+// ahead of the conversion, so that the kernel's (and a virtual machine host's) work of backing fresh pages
+// is done on the other core. For the converter process only: it changes malloc's thresholds for the rest of
+// the process.
 void reserve_huge_page_heap(size_t bytes, size_t prefault_bytes);
-
-// Tells the prefaulting thread how far up the heap is in use: operator new calls it for each block it
-// takes from malloc.
-void note_heap_block(const void* block, size_t bytes) noexcept;
 
 }  // namespace openplx::cli

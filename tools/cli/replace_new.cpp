@@ -3,7 +3,6 @@
 #include <cstdlib>
 #include <new>
 
-#include "tools/cli/huge_page_heap.h"
 #include "tools/cli/small_object_arena.h"
 
 namespace {
@@ -11,10 +10,7 @@ namespace {
 void* allocate_or_throw(std::size_t bytes) {
   if (void* block = openplx::cli::arena::allocate(bytes)) return block;
   for (;;) {
-    if (void* block = std::malloc(bytes == 0 ? 1 : bytes)) {
-      openplx::cli::note_heap_block(block, bytes);
-      return block;
-    }
+    if (void* block = std::malloc(bytes == 0 ? 1 : bytes)) return block;
     std::new_handler handler = std::get_new_handler();
     if (!handler) throw std::bad_alloc();
     handler();
