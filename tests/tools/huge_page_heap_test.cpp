@@ -1,4 +1,4 @@
-// The converter's heap set-up (tools/cli/huge_page_heap.h): the arena's next pages start on a huge page, a
+// The converter's heap set-up (tools/cli/huge_page_heap.h): the arena's pages in use become a huge page, a
 // thread faults in memory ahead of where the arena is in use and no further than asked, and what the
 // program writes meanwhile is never changed. Each test is a process of its own (ctest runs them one
 // by one), so the process-wide malloc settings it makes stay there.
@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -50,25 +51,32 @@ bool becomes_resident(uintptr_t page) {
   return false;
 }
 
-TEST(HugePageHeap, TheArenasNextPagesStartOnAHugePage) {
+// The AnonHugePages of the mapping that holds `address`, in kB (/proc/self/smaps); -1 when not found.
+long huge_kb_of_mapping_at(uintptr_t address) {
+  std::ifstream smaps("/proc/self/smaps");
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    unsigned long from = 0, to = 0;
+    if (std::sscanf(line.c_str(), "%lx-%lx ", &from, &to) == 2) inside = from <= address && address < to;
+    if (inside && line.rfind("AnonHugePages:", 0) == 0) return std::strtol(line.c_str() + 14, nullptr, 10);
+  }
+  return -1;
+}
+
+TEST(HugePageHeap, TheArenasPagesInUseBecomeOneHugePage) {
   if (!huge_pages_available()) GTEST_SKIP() << "no transparent huge pages here";
-  void* before = cli::arena::allocate(48);
+  auto* before = static_cast<unsigned char*>(cli::arena::allocate(48));
   ASSERT_NE(before, nullptr);
   std::memset(before, 0x5a, 48);
   cli::reserve_huge_page_heap(size_t{64} << 20, 0);
-  const auto frontier = reinterpret_cast<uintptr_t>(cli::arena::frontier());
-  EXPECT_EQ(frontier % kHugePage, 0u);
-  // A size class that had no page yet gets its first one there.
-  void* after = cli::arena::allocate(1984);
-  ASSERT_NE(after, nullptr);
-  EXPECT_GE(reinterpret_cast<uintptr_t>(after), frontier);
-  EXPECT_EQ(static_cast<unsigned char*>(before)[47], 0x5a);
+  // Collapsed into a huge page (MADV_COLLAPSE), what was written there kept.
+  EXPECT_GE(huge_kb_of_mapping_at(reinterpret_cast<uintptr_t>(before)), 2048);
+  EXPECT_EQ(before[47], 0x5a);
 }
 
-// Takes 2 KiB blocks until the arena's new pages come from `offset` bytes above `base` (taking a block
-// does not touch it).
-void take_arena_up_to(uintptr_t base, uintptr_t offset) {
-  while (reinterpret_cast<uintptr_t>(cli::arena::frontier()) < base + offset)
+// Takes 2 KiB blocks until the arena's new pages come from `address` (taking a block does not touch it).
+void take_arena_up_to(uintptr_t address) {
+  while (reinterpret_cast<uintptr_t>(cli::arena::frontier()) < address)
     ASSERT_NE(cli::arena::allocate(2048), nullptr);
 }
 
@@ -76,18 +84,18 @@ TEST(HugePageHeap, PagesAheadOfTheArenaInUseAreFaultedInAndNoFurtherThanAsked) {
   if (!huge_pages_available()) GTEST_SKIP() << "no transparent huge pages here";
   constexpr size_t kPrefault = size_t{8} << 20;
   cli::reserve_huge_page_heap(size_t{64} << 20, kPrefault);
-  const auto base = reinterpret_cast<uintptr_t>(cli::arena::frontier());
-  take_arena_up_to(base, size_t{1} << 20);
+  const uintptr_t first = reinterpret_cast<uintptr_t>(cli::arena::frontier()) & ~(kHugePage - 1);
+  take_arena_up_to(first + (size_t{1} << 20));
   // The huge page after the one in use is faulted in without anyone touching it, and no more: a quarter of
   // a second later the one after that is still untouched.
-  EXPECT_TRUE(becomes_resident(base + kHugePage + 4096));
+  EXPECT_TRUE(becomes_resident(first + kHugePage + 4096));
   std::this_thread::sleep_for(std::chrono::milliseconds(250));
-  EXPECT_FALSE(resident(base + 2 * kHugePage + 4096));
+  EXPECT_FALSE(resident(first + 2 * kHugePage + 4096));
   // In use far up: faulted in up to the limit asked for, not beyond.
-  take_arena_up_to(base, size_t{32} << 20);
-  EXPECT_TRUE(becomes_resident(base + kPrefault - 4096));
+  take_arena_up_to(first + (size_t{32} << 20));
+  EXPECT_TRUE(becomes_resident(first + kPrefault - 4096));
   std::this_thread::sleep_for(std::chrono::milliseconds(250));
-  EXPECT_FALSE(resident(base + kPrefault + 4096));
+  EXPECT_FALSE(resident(first + kPrefault + 4096));
 }
 
 TEST(HugePageHeap, WhatTheProgramWritesWhilePagesAreFaultedInStaysWritten) {

@@ -6,6 +6,10 @@
 #include <cstdint>
 #include <cstring>
 
+#ifndef MADV_COLLAPSE
+#define MADV_COLLAPSE 25  // Linux 6.1; older C library headers lack it
+#endif
+
 namespace openplx::cli::arena {
 namespace {
 
@@ -18,6 +22,7 @@ constexpr std::size_t kPage = std::size_t{1} << kPageShift;
 constexpr std::size_t kReserved = std::size_t{16} << 30;
 constexpr std::size_t kPages = kReserved / kPage;
 constexpr int kOrphans = 8;
+constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
 
 struct FreeBlock {
   FreeBlock* next;
@@ -62,10 +67,12 @@ bool reserved() {
   if (shared.tried.load(std::memory_order_acquire)) return shared.base != nullptr;
   Lock lock;
   if (!shared.tried.load(std::memory_order_relaxed)) {
-    void* range =
-        mmap(nullptr, kReserved, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    // A huge page more than used, so that the range can start on one (see use_huge_pages).
+    void* range = mmap(nullptr, kReserved + kHugePage, PROT_READ | PROT_WRITE,
+                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
     if (range != MAP_FAILED) {
-      shared.base = static_cast<char*>(range);
+      shared.base = reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(range) + kHugePage - 1) &
+                                            ~(kHugePage - 1));
       shared.end = shared.base + kReserved;
       shared.next_page.store(shared.base, std::memory_order_relaxed);
     }
@@ -166,18 +173,14 @@ std::size_t block_size(const void* block) noexcept {
 
 char* use_huge_pages() noexcept {
   if (!reserved()) return nullptr;
-  // From the next page not yet given out, rounded up to a huge page: what is in use keeps its pages.
-  constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
-  char* next = shared.next_page.load(std::memory_order_relaxed);
-  const auto from = (reinterpret_cast<std::uintptr_t>(next) + kHugePage - 1) & ~(kHugePage - 1);
-  const auto to = reinterpret_cast<std::uintptr_t>(shared.end) & ~(kHugePage - 1);
-  if (to <= from || madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE) != 0) return nullptr;
-  // New pages start at the huge page: the rest of the partly used one would be faulted in 4 KiB at a time
-  // (up to 512 faults, each about 10 us on a virtual machine). Its untouched pages cost address space only.
-  while (next < reinterpret_cast<char*>(from) &&
-         !shared.next_page.compare_exchange_weak(next, reinterpret_cast<char*>(from),
-                                                 std::memory_order_relaxed)) {
-  }
+  // The whole range from the huge page in use: the pages already given out there keep it in small pages
+  // (up to 512 faults, each about 10 us on a virtual machine), so it is collapsed into one huge page now
+  // (MADV_COLLAPSE, Linux 6.1; without it, that first one stays as it is).
+  const auto next = reinterpret_cast<std::uintptr_t>(shared.next_page.load(std::memory_order_relaxed));
+  const auto from = next & ~(kHugePage - 1);  // the range starts on a huge page
+  const auto to = reinterpret_cast<std::uintptr_t>(shared.end);
+  if (madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE) != 0) return nullptr;
+  if (next > from) madvise(reinterpret_cast<void*>(from), kHugePage, MADV_COLLAPSE);
   return reinterpret_cast<char*>(from);
 }
 
