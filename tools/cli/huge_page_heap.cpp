@@ -59,7 +59,10 @@ void reserve_huge_page_heap(size_t bytes, size_t prefault_bytes) {
   // block's header and the new top's: a page touched before the madvise below keeps its whole 2 MiB range
   // in small pages (up to 511 more faults, about 10 us each on a virtual machine), so one block, not many.
   void* block = malloc(bytes);
-  if (!block) return;
+  if (!block) {
+    mallopt(M_MMAP_MAX, 65536);  // glibc's default: large blocks may come from mmap again
+    return;
+  }
   const auto begin = reinterpret_cast<uintptr_t>(block);
   free(block);
   const auto end = reinterpret_cast<uintptr_t>(sbrk(0));
