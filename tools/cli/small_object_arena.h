@@ -18,10 +18,10 @@ namespace openplx::cli::arena {
 void* allocate(std::size_t bytes) noexcept;
 // Takes a block back; false when `block` is not from the arena (the caller then frees it).
 bool deallocate(void* block) noexcept;
-// Asks for transparent huge pages in what the arena has not touched yet (see huge_page_heap.h), where its
-// next pages are taken from; returns that range's start (nullptr when there is none or THP is off).
+// Asks for transparent huge pages from the huge page in use on (see huge_page_heap.h), that one collapsed
+// into a huge page where the kernel can; returns its start (nullptr when there is no range or THP is off).
 char* use_huge_pages() noexcept;
-// Where the arena's next new page comes from (its pages below are in use or skipped).
+// Where the arena's next new page comes from (its pages below are given out).
 char* frontier() noexcept;
 // The usable size of one of the arena's blocks (its size class); 0 for other pointers.
 std::size_t block_size(const void* block) noexcept;
