@@ -209,11 +209,14 @@ std::string_view to_string(Quantity quantity) {
 GearSelection gearbox_ratio(const std::vector<double>& forward, const std::vector<double>& reverse,
                             bool has_neutral, int gear) {
   GearSelection g;
-  if (gear > 0 && gear <= static_cast<int>(forward.size())) {
-    g.ratio = std::abs(forward[static_cast<size_t>(gear - 1)]);
-  } else if (gear < 0 && -gear <= static_cast<int>(reverse.size())) {
-    g.ratio = -std::abs(reverse[static_cast<size_t>(-gear - 1)]);
-  } else if (gear == 0) {
+  // In 64 bits: -gear of INT_MIN does not fit an int, and a list's size need not either.
+  const int64_t n = gear, forward_count = static_cast<int64_t>(forward.size()),
+                reverse_count = static_cast<int64_t>(reverse.size());
+  if (n > 0 && n <= forward_count) {
+    g.ratio = std::abs(forward[static_cast<size_t>(n - 1)]);
+  } else if (n < 0 && -n <= reverse_count) {
+    g.ratio = -std::abs(reverse[static_cast<size_t>(-n - 1)]);
+  } else if (n == 0) {
     if (!has_neutral && !forward.empty()) g.ratio = std::abs(forward.front());
   } else {
     g.valid = false;
@@ -420,16 +423,24 @@ void write_law(Cursor& out, const RuntimeLaw& law) {
 }  // namespace
 
 std::string manifest_json(std::string_view model_name, std::string_view prefix,
-                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws) {
+                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
+                          const ManifestModel& model) {
   std::string whole;
   whole.reserve(64 + 400 * bindings.size());  // a little over what one binding takes: one allocation
-  write_manifest_json(model_name, prefix, bindings, laws, [&whole](std::string_view part) { whole += part; });
+  write_manifest_json(model_name, prefix, bindings, laws, model,
+                      [&whole](std::string_view part) { whole += part; });
   return whole;
 }
 
 void write_manifest_json(std::string_view model_name, std::string_view prefix,
                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
                          const std::function<void(std::string_view)>& write) {
+  write_manifest_json(model_name, prefix, bindings, laws, ManifestModel{}, write);
+}
+
+void write_manifest_json(std::string_view model_name, std::string_view prefix,
+                         const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
+                         const ManifestModel& model, const std::function<void(std::string_view)>& write) {
   // Written in place and handed on in pieces, so a file written from it never holds the whole text in memory.
   constexpr size_t kPiece = 64 << 10;
   std::string buffer(kPiece + 8192, '\0');
@@ -444,8 +455,11 @@ void write_manifest_json(std::string_view model_name, std::string_view prefix,
     write(std::string_view(buffer.data(), used));
     used = 0;
   };
-  Cursor head = cursor(kFixedRoom + string_room(model_name) + string_room(prefix));
+  Cursor head = cursor(kFixedRoom + kNumberChars + string_room(model_name) + string_room(prefix) +
+                       string_room(model.fingerprint));
   head.text("{\n  \"model\": ").string(model_name).text(",\n  \"prefix\": ").string(prefix);
+  if (!model.fingerprint.empty()) head.text(",\n  \"fingerprint\": ").string(model.fingerprint);
+  if (model.timestep > 0) head.text(",\n  \"timestep\": ").number(model.timestep);
   head.text(",\n  \"signals\": [");
   done(head, kPiece);
   // The items of one JSON array, each on its own line.

@@ -206,11 +206,23 @@ std::string_view to_string(Quantity quantity);
 // "reason", "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y", "curve2_x", "curve2_y",
 // "parameter"}]} with keys in that order, one signal or law per line, deterministic. Numbers JSON cannot hold
 // are the strings "inf", "-inf", "nan". `prefix` is the one every MuJoCo name carries.
+//
+// What the manifest says about the model itself, written after "prefix" when given: "fingerprint" (a
+// SignalBridge refuses a model whose own fingerprint differs: model_fingerprint.h) and "timestep" (the time
+// step it was emitted for, which the runtime names when the model runs unstably at another).
+struct ManifestModel {
+  std::string fingerprint;  // model_fingerprint(document, prefix).text(); "" leaves it out
+  double timestep = 0;      // s; 0 leaves it out
+};
 std::string manifest_json(std::string_view model_name, std::string_view prefix,
-                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws);
+                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
+                          const ManifestModel& model = {});
 // The same text handed to `write` in pieces of about 64 KiB (a 10,000-body model's manifest is 40 MB).
 void write_manifest_json(std::string_view model_name, std::string_view prefix,
                          const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
                          const std::function<void(std::string_view)>& write);
+void write_manifest_json(std::string_view model_name, std::string_view prefix,
+                         const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,
+                         const ManifestModel& model, const std::function<void(std::string_view)>& write);
 
 }  // namespace openplx::mjcf

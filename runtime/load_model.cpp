@@ -12,6 +12,7 @@
 #include "frontend/urdf/urdf_importer.h"
 #include "mjcf_emitter/emitter.h"
 #include "openplx/runtime/simulation.h"
+#include "runtime/mujoco_messages.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
 
@@ -47,7 +48,11 @@ mjModel* load_xml(const std::string& xml, std::string& error) {
   ::close(fd);
   std::ofstream(pattern, std::ios::binary) << xml;
   char message[1024] = "";
-  mjModel* model = mj_loadXML(pattern.c_str(), nullptr, message, sizeof(message));
+  mjModel* model = nullptr;
+  std::string stopped;  // an mju_error inside the compiler (runtime/mujoco_messages.h)
+  if (!call_mujoco(
+          nullptr, [&] { model = mj_loadXML(pattern.c_str(), nullptr, message, sizeof(message)); }, stopped))
+    std::snprintf(message, sizeof(message), "%s", stopped.c_str());
   std::error_code ec;
   fs::remove(pattern, ec);
   if (!model) error = message;

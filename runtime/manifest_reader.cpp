@@ -1,5 +1,6 @@
 #include "runtime/manifest_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -80,6 +81,163 @@ mjcf::RuntimeLaw law(const json& j) {
   return l;
 }
 
+// The kind of MuJoCo element each quantity acts on (InteractionEnabled: one of three).
+bool object_fits(Quantity q, MjObject o) {
+  switch (q) {
+    case Quantity::None:
+      return true;
+    case Quantity::Composite:
+    case Quantity::Broadcast:
+    case Quantity::Affine:
+    case Quantity::Constant:
+      return o == MjObject::None;
+    case Quantity::Ctrl:
+    case Quantity::ForceRange:
+    case Quantity::ActuatorForce:
+      return o == MjObject::Actuator;
+    case Quantity::EqualityActive:
+    case Quantity::GearRatio:
+    case Quantity::DistanceTarget:
+    case Quantity::GearSelect:
+    case Quantity::EqualityTarget:
+    case Quantity::EqualityForce:
+      return o == MjObject::Equality;
+    case Quantity::KinematicLinearVelocity:
+    case Quantity::KinematicAngularVelocity:
+    case Quantity::BodyPosition:
+    case Quantity::BodyRPY:
+    case Quantity::BodyLinearVelocity:
+    case Quantity::BodyAngularVelocity:
+    case Quantity::BodyLinearAcceleration:
+      return o == MjObject::Body;
+    case Quantity::FreeLinearVelocity:
+    case Quantity::FreeAngularVelocity:
+    case Quantity::JointPosition:
+    case Quantity::JointVelocity:
+    case Quantity::JointLimitForce:
+      return o == MjObject::Joint;
+    case Quantity::InteractionEnabled:
+      return o == MjObject::Tendon || o == MjObject::Actuator || o == MjObject::Joint;
+    case Quantity::MotorForceRange:
+    case Quantity::EngagementFraction:
+    case Quantity::Engaged:
+    case Quantity::EngageDuration:
+    case Quantity::DisengageDuration:
+    case Quantity::MotorForce:
+    case Quantity::TendonVelocity:
+    case Quantity::TendonLength:
+    case Quantity::TendonLimitForce:
+    case Quantity::TendonSpringForce:
+      return o == MjObject::Tendon;
+    case Quantity::SitePosition:
+    case Quantity::SiteRPY:
+    case Quantity::SiteLinearVelocity:
+    case Quantity::SiteAngularVelocity:
+    case Quantity::MateForce:
+    case Quantity::MateTorque:
+      return o == MjObject::Site;
+    case Quantity::SensorFields:
+      return o == MjObject::Sensor;
+  }
+  return false;
+}
+
+bool all_finite(const std::vector<double>& values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+// Why the runtime cannot use binding `b` as it stands ("" when it can): everything it indexes or computes
+// with must be there and finite.
+std::string binding_problem(const mjcf::SignalBinding& b) {
+  const Quantity q = b.quantity;
+  if (q == Quantity::None) return "";
+  if (!object_fits(q, b.object)) {
+    return "quantity `" + std::string(to_string(q)) + "` does not act on a `" +
+           std::string(to_string(b.object)) + "`";
+  }
+  const bool composed = q == Quantity::Composite || q == Quantity::Broadcast || q == Quantity::Affine;
+  if (b.names.empty() && q != Quantity::Constant && q != Quantity::Composite && q != Quantity::Broadcast)
+    return "it names no MuJoCo element";
+  if (!composed) {
+    for (const std::string& name : b.names) {
+      if (name.empty()) return "it names an element with an empty name";
+    }
+  }
+  if (!std::isfinite(b.sign)) return "its sign is not a finite number";
+  if (!std::isfinite(b.initial)) return "its initial value is not a finite number";
+  if (!all_finite(b.initial_vector)) return "its initial_vector holds a number that is not finite";
+  if (std::isnan(b.low) || std::isnan(b.high)) return "its low or high is NaN";
+  auto value_is = [&](SignalValue v) { return b.value == v; };
+  switch (q) {
+    case Quantity::ForceRange:
+    case Quantity::MotorForceRange:
+      if (!value_is(SignalValue::Vec2)) return "a range takes two numbers (value `vec2`)";
+      break;
+    case Quantity::KinematicLinearVelocity:
+    case Quantity::KinematicAngularVelocity:
+      if (b.input && !value_is(SignalValue::Vec3))
+        return "a velocity input takes three numbers (value `vec3`)";
+      if (!b.initial_vector.empty() && b.initial_vector.size() != 3)
+        return "its initial_vector must hold a velocity's three numbers";
+      break;
+    case Quantity::FreeLinearVelocity:
+    case Quantity::FreeAngularVelocity:
+      if (!value_is(SignalValue::Vec3)) return "a velocity input takes three numbers (value `vec3`)";
+      break;
+    case Quantity::InteractionEnabled:
+      if (b.low > b.high) return "its effort range's low exceeds its high";
+      break;
+    case Quantity::Engaged:
+      if (b.initial_vector.size() != 1 || b.initial_vector[0] < 0)
+        return "its initial_vector must hold the clutch's torque capacity (one number, not negative)";
+      if (!(b.low >= 0 && b.high >= 0 && std::isfinite(b.low) && std::isfinite(b.high)))
+        return "its engage and disengage durations (low, high) must be finite and not negative";
+      break;
+    case Quantity::EngagementFraction:
+      if (!(std::isfinite(b.high) && b.high >= 0))
+        return "its capacity (high) must be finite and not negative";
+      break;
+    case Quantity::GearSelect:
+      if (!value_is(SignalValue::Int)) return "a gear is an Int (value `int`)";
+      if (std::floor(b.initial) != b.initial || std::abs(b.initial) > 1e9)
+        return "its initial gear is not a whole number of a gearbox";
+      if (!std::isfinite(b.low)) return "its forward gear count (low) is not finite";
+      break;
+    case Quantity::Affine:
+      if (!std::isfinite(b.low) || !std::isfinite(b.high)) return "its scale and offset must be finite";
+      break;
+    case Quantity::SensorFields:
+      if (b.initial_vector.size() != b.names.size()) return "it needs one field index per sensor";
+      break;
+    default:
+      break;
+  }
+  return "";
+}
+
+std::string law_problem(const mjcf::RuntimeLaw& l) {
+  const size_t wanted = l.kind == mjcf::RuntimeLaw::Kind::Engine ? 1 : 2;
+  if (l.actuators.size() != wanted) {
+    return std::string(l.kind == mjcf::RuntimeLaw::Kind::Engine ? "an engine law"
+                                                                : "a torque-converter law") +
+           " needs " + (wanted == 1 ? "one actuator" : "two actuators (pump, turbine)") + ", not " +
+           std::to_string(l.actuators.size());
+  }
+  for (const auto* curve : {&l.curve_x, &l.curve_y, &l.curve2_x, &l.curve2_y}) {
+    if (!all_finite(*curve)) return "a curve holds a number that is not finite";
+  }
+  if (l.curve_x.size() != l.curve_y.size() || l.curve2_x.size() != l.curve2_y.size())
+    return "a curve's x and y differ in length";
+  if (!std::is_sorted(l.curve_x.begin(), l.curve_x.end()) ||
+      !std::is_sorted(l.curve2_x.begin(), l.curve2_x.end()))
+    return "a curve's x values are not in ascending order";
+  if (!std::isfinite(l.parameter)) return "its parameter is not finite";
+  return "";
+}
+
 }  // namespace
 
 Manifest read_manifest(const std::string& path) {
@@ -87,19 +245,35 @@ Manifest read_manifest(const std::string& path) {
   if (!in) throw LoadError(path + ": error: cannot open the signal manifest\n");
   std::ostringstream text;
   text << in.rdbuf();
+  return parse_manifest(text.str(), path);
+}
+
+Manifest parse_manifest(const std::string& text, const std::string& path) {
+  Manifest m;
   try {
-    const json j = json::parse(text.str());
-    Manifest m;
+    const json j = json::parse(text);
     m.model = j.at("model").get<std::string>();
     m.prefix = j.value("prefix", std::string());
+    m.fingerprint = j.value("fingerprint", std::string());
+    if (j.contains("timestep")) m.timestep = real(j.at("timestep"));
     for (const json& s : j.at("signals")) m.signals.push_back(binding(s));
     if (j.contains("laws")) {
       for (const json& l : j.at("laws")) m.laws.push_back(law(l));
     }
-    return m;
   } catch (const std::exception& e) {  // nlohmann's parse, type and key errors, and ours
     throw LoadError(path + ": error: not a signal manifest: " + e.what() + "\n");
   }
+  if (!(m.timestep >= 0 && std::isfinite(m.timestep)))
+    throw LoadError(path + ": error: its timestep is not a positive number of seconds\n");
+  for (const mjcf::SignalBinding& b : m.signals) {
+    if (const std::string problem = binding_problem(b); !problem.empty())
+      throw LoadError(path + ": error: signal `" + b.path + "`: " + problem + "\n");
+  }
+  for (const mjcf::RuntimeLaw& l : m.laws) {
+    if (const std::string problem = law_problem(l); !problem.empty())
+      throw LoadError(path + ": error: law of `" + l.path + "`: " + problem + "\n");
+  }
+  return m;
 }
 
 }  // namespace openplx::runtime

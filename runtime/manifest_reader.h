@@ -10,13 +10,20 @@
 namespace openplx::runtime {
 
 struct Manifest {
-  std::string model;   // the root model's name
-  std::string prefix;  // the prefix its MuJoCo names were emitted with
+  std::string model;        // the root model's name
+  std::string prefix;       // the prefix its MuJoCo names were emitted with
+  std::string fingerprint;  // mjcf::Fingerprint text; "" in manifests written before it existed
+  double timestep = 0;      // the time step the model was emitted for; 0: not recorded
   std::vector<mjcf::SignalBinding> signals;
   std::vector<mjcf::RuntimeLaw> laws;
 };
 
-// Throws LoadError("PATH: error: ...") when the file cannot be read or is not a manifest.
+// Throws LoadError("PATH: error: ...") when the file cannot be read or is not a manifest, and when a
+// binding or law is inconsistent in itself (a quantity on the wrong kind of element or value, no names
+// where the runtime needs one, a non-finite number where it computes with it, a torque converter without
+// its two actuators...), naming the signal or law.
 Manifest read_manifest(const std::string& path);
+// The same from text (`path` only names it in messages).
+Manifest parse_manifest(const std::string& text, const std::string& path);
 
 }  // namespace openplx::runtime

@@ -1,13 +1,84 @@
 #include "openplx/runtime/signal_bridge.h"
 
+#include <mutex>
+#include <set>
+#include <utility>
+
+#include "mjcf_emitter/model_fingerprint.h"
 #include "runtime/manifest_reader.h"
+#include "runtime/mujoco_messages.h"
 #include "runtime/simulation_state.h"
 
 namespace openplx::runtime {
 
+namespace {
+
+// The bridges alive, by the data they drive and their prefix: two on the same elements would each keep
+// their own inputs (clutch ramps, gears, kinematic velocities) and disagree.
+std::mutex registry_mutex;
+std::set<std::pair<const mjData*, std::string>>& registry() {
+  static std::set<std::pair<const mjData*, std::string>> bridges;
+  return bridges;
+}
+
+mjtObj object_type(mjcf::MjObject object) {
+  switch (object) {
+    case mjcf::MjObject::Actuator:
+      return mjOBJ_ACTUATOR;
+    case mjcf::MjObject::Joint:
+      return mjOBJ_JOINT;
+    case mjcf::MjObject::Body:
+      return mjOBJ_BODY;
+    case mjcf::MjObject::Site:
+      return mjOBJ_SITE;
+    case mjcf::MjObject::Equality:
+      return mjOBJ_EQUALITY;
+    case mjcf::MjObject::Tendon:
+      return mjOBJ_TENDON;
+    case mjcf::MjObject::Sensor:
+      return mjOBJ_SENSOR;
+    case mjcf::MjObject::None:
+      break;
+  }
+  return mjOBJ_UNKNOWN;
+}
+
+bool composed(mjcf::Quantity q) {
+  return q == mjcf::Quantity::Composite || q == mjcf::Quantity::Broadcast || q == mjcf::Quantity::Affine;
+}
+
+// Every MuJoCo element the manifest names that `model` lacks, as "kind `name`".
+std::vector<std::string> missing_elements(const Manifest& read, const mjModel* model, size_t& named) {
+  std::set<std::pair<mjcf::MjObject, std::string>> wanted;
+  for (const mjcf::SignalBinding& b : read.signals) {
+    if (b.quantity == mjcf::Quantity::None || composed(b.quantity)) continue;
+    for (const std::string& name : b.names) wanted.emplace(b.object, name);
+    if (!b.sensor.empty()) wanted.emplace(mjcf::MjObject::Sensor, b.sensor);
+  }
+  for (const mjcf::RuntimeLaw& law : read.laws)
+    for (const std::string& name : law.actuators) wanted.emplace(mjcf::MjObject::Actuator, name);
+  named = wanted.size();
+  std::vector<std::string> missing;
+  for (const auto& [object, name] : wanted) {
+    if (mj_name2id(model, object_type(object), name.c_str()) < 0)
+      missing.push_back(std::string(mjcf::to_string(object)) + " `" + name + "`");
+  }
+  return missing;
+}
+
+std::string list(const std::vector<std::string>& items, size_t most) {
+  std::string text;
+  for (size_t k = 0; k < items.size() && k < most; ++k) text += (k ? ", " : "") + items[k];
+  if (items.size() > most) text += " and " + std::to_string(items.size() - most) + " more";
+  return text;
+}
+
+}  // namespace
+
 SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, mjData* data,
                                   const std::string& prefix) {
   if (!model || !data) throw LoadError(manifest + ": error: a bridge needs a model and its data\n");
+  install_mujoco_handlers();
   Manifest read = read_manifest(manifest);
   // Names carry the prefix they were emitted with; another one given here replaces it.
   if (!prefix.empty() && prefix != read.prefix) {
@@ -16,47 +87,95 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
         name = prefix + name.substr(read.prefix.size());
     };
     for (mjcf::SignalBinding& b : read.signals) {
+      if (composed(b.quantity)) continue;  // its names are OpenPLX paths
       for (std::string& name : b.names) rename(name);
       if (!b.sensor.empty()) rename(b.sensor);
     }
     for (mjcf::RuntimeLaw& law : read.laws)
       for (std::string& name : law.actuators) rename(name);
   }
+  const std::string used_prefix = prefix.empty() ? read.prefix : prefix;
+  const std::string is_it =
+      "; is it the model emitted with this manifest (names with prefix `" + used_prefix + "`)?\n";
+  // The model the manifest was emitted for: its own bodies and joints, wherever the scene put them.
+  if (!read.fingerprint.empty()) {
+    mjcf::Fingerprint expected;
+    if (!mjcf::Fingerprint::parse(read.fingerprint, expected))
+      throw LoadError(manifest + ": error: its fingerprint `" + read.fingerprint +
+                      "` is not one this runtime reads (a newer openplx2mjcf wrote it?)\n");
+    const mjcf::Fingerprint found = mjcf::model_fingerprint(model, used_prefix);
+    // Without a prefix, a scene's other models' elements count too: then only the names below are checked.
+    const bool scene =
+        used_prefix.empty() && (found.bodies > expected.bodies || found.joints > expected.joints);
+    if (!scene &&
+        (found.bodies != expected.bodies || found.joints != expected.joints || found.hash != expected.hash)) {
+      throw LoadError(manifest + ": error: the manifest was written for another model: it describes " +
+                      std::to_string(expected.bodies) + " bodies and " + std::to_string(expected.joints) +
+                      " joints (fingerprint " + expected.hash + "), the model's own are " +
+                      std::to_string(found.bodies) + " bodies and " + std::to_string(found.joints) +
+                      " joints (fingerprint " + found.hash + ")" + is_it);
+    }
+  }
+  size_t named = 0;
+  const std::vector<std::string> missing = missing_elements(read, model, named);
+  if (!missing.empty()) {
+    throw LoadError(manifest + ": error: the model lacks " + std::to_string(missing.size()) + " of the " +
+                    std::to_string(named) + " MuJoCo elements this manifest names (" + list(missing, 5) +
+                    ")" + is_it);
+  }
   auto state = std::make_unique<SimulationState>();
   state->m = model;
   state->d = data;
   state->owns = false;
   state->root = read.model;
-  // Every binding that names an element the model lacks is refused (resolve marks it unmapped); a model
-  // without any of them is the wrong model or the wrong prefix.
-  size_t named = 0, found = 0;
-  for (const mjcf::SignalBinding& b : read.signals) {
-    if (b.quantity == mjcf::Quantity::None || b.names.empty()) continue;
-    ++named;
-    found += mj_name2id(model, mjOBJ_UNKNOWN, b.names.front().c_str()) >= 0 ||
-             mj_name2id(model, mjOBJ_JOINT, b.names.front().c_str()) >= 0 ||
-             mj_name2id(model, mjOBJ_BODY, b.names.front().c_str()) >= 0 ||
-             mj_name2id(model, mjOBJ_ACTUATOR, b.names.front().c_str()) >= 0 ||
-             mj_name2id(model, mjOBJ_SITE, b.names.front().c_str()) >= 0 ||
-             mj_name2id(model, mjOBJ_TENDON, b.names.front().c_str()) >= 0 ||
-             mj_name2id(model, mjOBJ_EQUALITY, b.names.front().c_str()) >= 0;
-  }
-  if (named > 0 && found == 0) {
-    throw LoadError(manifest + ": error: the model has none of the elements this manifest names (prefix `" +
-                    (prefix.empty() ? read.prefix : prefix) + "`); is it the model emitted with it?\n");
-  }
+  state->source = manifest;
+  state->prefix = used_prefix;
+  state->emitted_timestep = read.timestep;
   state->resolve(std::move(read.signals), read.laws);
+  if (!state->mismatches.empty()) {
+    throw LoadError(manifest + ": error: the manifest does not fit the model: " + list(state->mismatches, 5) +
+                    is_it);
+  }
+  {
+    const std::lock_guard<std::mutex> lock(registry_mutex);
+    if (!registry().emplace(data, used_prefix).second) {
+      throw LoadError(manifest + ": error: a bridge for the names with prefix `" + used_prefix +
+                      "` is already attached to this mjData; a second one would keep inputs of its own and "
+                      "disagree with it: use the first\n");
+    }
+  }
+  state->registered = true;
+  state->begin_watch();
+  current_sink() = nullptr;
   return SignalBridge(std::move(state));
 }
 
 SignalBridge::SignalBridge(std::unique_ptr<SimulationState> state) : state_(std::move(state)) {}
 SignalBridge::SignalBridge(SignalBridge&&) noexcept = default;
-SignalBridge& SignalBridge::operator=(SignalBridge&&) noexcept = default;
-SignalBridge::~SignalBridge() = default;
+SignalBridge& SignalBridge::operator=(SignalBridge&& other) noexcept {
+  if (this != &other) {
+    SignalBridge gone(std::move(*this));  // unregistered as it goes
+    state_ = std::move(other.state_);
+  }
+  return *this;
+}
+SignalBridge::~SignalBridge() {
+  if (!state_ || !state_->registered) return;
+  const std::lock_guard<std::mutex> lock(registry_mutex);
+  registry().erase({state_->d, state_->prefix});
+}
+
+// A Simulation's own bridge: registered like attached ones, so a bridge attached to its data is refused.
+void SignalBridge::register_own() {
+  const std::lock_guard<std::mutex> lock(registry_mutex);
+  registry().emplace(state_->d, state_->prefix);
+  state_->registered = true;
+}
 
 Input SignalBridge::input(std::string_view name) {
   const int index = state_->find(name, true);
-  return Input(state_.get(), index, state_->signals[static_cast<size_t>(index)].direct);
+  const ResolvedSignal& s = state_->signals[static_cast<size_t>(index)];
+  return Input(state_.get(), index, s.direct, s.low, s.high);
 }
 
 Output SignalBridge::output(std::string_view name) {
@@ -86,11 +205,23 @@ void SignalBridge::before_step() {
   if (state_->stale) {  // an input changed model fields mj_step1 reads: mj_step's own step1 picks them up
     state_->stale = false;
   }
+  state_->begin_watch();
   state_->before_step();
 }
 
 void SignalBridge::after_step() {
+  state_->end_watch();
   state_->after_step();
+  state_->begin_watch();  // a caller that skips before_step is still watched from here
+  current_sink() = nullptr;
+}
+
+void SignalBridge::set_on_instability(OnInstability what) {
+  state_->on_instability = what;
+}
+
+const std::vector<std::string>& SignalBridge::warnings() const {
+  return state_->warnings;
 }
 
 void Input::set_checked(double value) {

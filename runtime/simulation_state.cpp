@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mjcf_emitter/xml.h"
 #include "runtime/mujoco_compat.h"
 #include "runtime/name_suggestions.h"
 #include "runtime/rotation.h"
@@ -107,9 +108,43 @@ Eigen::Vector3d linear_velocity(const mjModel* m, const mjData* d, int b, const 
   return v + w.cross(vec(point) - c);
 }
 
+// What makes the element a binding names unfit for its quantity (a manifest that does not fit the model);
+// "" when it fits. The names exist (resolve looked them up).
+std::string element_problem(const mjModel* m, const mjcf::SignalBinding& b, const std::vector<int>& ids) {
+  const int id = ids.front();
+  const std::string name = "`" + b.names.front() + "`";
+  switch (b.quantity) {
+    case Quantity::KinematicLinearVelocity:
+    case Quantity::KinematicAngularVelocity:
+      return m->body_mocapid[id] < 0 ? "body " + name + " is not a mocap body" : "";
+    case Quantity::FreeLinearVelocity:
+    case Quantity::FreeAngularVelocity:
+      return m->jnt_type[id] != mjJNT_FREE ? "joint " + name + " is not a free joint" : "";
+    case Quantity::GearRatio:
+    case Quantity::GearSelect:
+      return m->eq_type[id] != mjEQ_JOINT || m->eq_obj2id[id] < 0
+                 ? "equality " + name + " does not couple two joints"
+                 : "";
+    case Quantity::EqualityTarget:
+      return m->eq_type[id] != mjEQ_JOINT ? "equality " + name + " is not a joint equality" : "";
+    case Quantity::DistanceTarget:
+      return m->eq_type[id] != mjEQ_TENDON ? "equality " + name + " is not a tendon equality" : "";
+    case Quantity::SensorFields:
+      for (size_t k = 0; k < ids.size(); ++k) {
+        const double field = k < b.initial_vector.size() ? b.initial_vector[k] : -1;
+        if (!(field >= 0 && field < m->sensor_dim[ids[k]]) || std::floor(field) != field)
+          return "sensor `" + b.names[k] + "` has no field " + mjcf::number(field);
+      }
+      return "";
+    default:
+      return "";
+  }
+}
+
 }  // namespace
 
 SimulationState::~SimulationState() {
+  if (current_sink() == this) current_sink() = nullptr;
   if (!owns) return;
   if (d) mj_deleteData(d);
   if (m) mj_deleteModel(m);
@@ -135,10 +170,21 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
       if (id < 0) {  // the emitter promised it: a mismatch is a bug, so the signal is refused, not misread
         s.info.mapped = false;
         s.info.mujoco = "not mapped: MuJoCo has no " + std::string(to_string(b.object)) + " named " + name;
+        if (b.quantity != Quantity::None)
+          mismatches.push_back("`" + b.path + "`: " + s.info.mujoco.substr(12));
         b.quantity = Quantity::None;
         b.reason = s.info.mujoco;
       }
       s.ids.push_back(id);
+    }
+    if (b.quantity != Quantity::None && !composed(b.quantity) && !s.ids.empty()) {
+      if (const std::string problem = element_problem(m, b, s.ids); !problem.empty()) {
+        s.info.mapped = false;
+        s.info.mujoco = "not mapped: " + problem;
+        mismatches.push_back("`" + b.path + "`: " + problem);
+        b.quantity = Quantity::None;
+        b.reason = s.info.mujoco;
+      }
     }
     if (!b.sensor.empty()) s.sensor = mj_name2id(m, mjOBJ_SENSOR, b.sensor.c_str());
     if (b.quantity != Quantity::None && !s.ids.empty()) {
@@ -157,6 +203,17 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
         target[static_cast<size_t>(s.address)] =
             Eigen::Vector3d(b.initial_vector[0], b.initial_vector[1], b.initial_vector[2]);
         kinematic = kinematic || !target[static_cast<size_t>(s.address)].isZero();
+      }
+      if (b.input && b.quantity == Quantity::Ctrl && m->actuator_ctrllimited[id]) {
+        s.low = m->actuator_ctrlrange[2 * id];
+        s.high = m->actuator_ctrlrange[2 * id + 1];
+      } else if (b.input && b.quantity == Quantity::EngagementFraction) {
+        s.low = 0;
+        s.high = 1;
+      } else if (b.input && b.quantity == Quantity::EqualityTarget && b.initial_vector.empty() &&
+                 m->jnt_limited[m->eq_obj1id[id]]) {  // a kinematic steering joint's travel
+        s.low = m->jnt_range[2 * m->eq_obj1id[id]];
+        s.high = m->jnt_range[2 * m->eq_obj1id[id] + 1];
       }
       if (s.info.value == ValueType::Real) {  // the inlined fast path of Input::set and Output::real
         if (b.quantity == Quantity::Ctrl) s.direct = d->ctrl + id;
@@ -233,6 +290,25 @@ void SimulationState::resolve_composites() {
   }
   for (ResolvedSignal& s : signals) {
     if (s.binding.quantity == Quantity::SensorFields) s.info.size = s.ids.size();
+  }
+  // A signal made of itself, or nested deeper than any model writes, would recurse without end.
+  auto depth = [&](auto& self, int index, int level) -> int {
+    const ResolvedSignal& s = signals[static_cast<size_t>(index)];
+    if (level > 16) return level;
+    int deepest = level;
+    for (int p : s.parts) deepest = std::max(deepest, self(self, p, level + 1));
+    return deepest;
+  };
+  for (size_t k = 0; k < signals.size(); ++k) {
+    ResolvedSignal& s = signals[k];
+    if (s.parts.empty() || depth(depth, static_cast<int>(k), 0) <= 16) continue;
+    mismatches.push_back("`" + s.info.name + "`: its parts contain itself");
+    s.info.mapped = false;
+    s.info.mujoco = "not mapped: its parts contain itself";
+    s.binding.quantity = Quantity::None;
+  }
+  for (ResolvedSignal& s : signals) {
+    if (s.binding.quantity == Quantity::None) s.parts.clear();
   }
 }
 
@@ -324,14 +400,110 @@ int SimulationState::find(std::string_view name, bool input) const {
 void SimulationState::step() {
   // mj_step = mj_step1 + mj_step2 under Euler. Running step1 of the next state right after step2 leaves
   // positions and velocities (and the outputs computed from them) current after every step, at no extra cost.
+  begin_watch();
+  std::string error;
   if (stale) {
-    mj_step1(m, d);
+    if (!call_mujoco(
+            d, [this] { mj_step1(m, d); }, error))
+      mujoco_failed(error);
     stale = false;
   }
   before_step();
-  mj_step2(m, d);
+  if (!call_mujoco(
+          d, [this] { mj_step2(m, d); }, error))
+    mujoco_failed(error);
   after_step();
-  mj_step1(m, d);
+  if (!call_mujoco(
+          d, [this] { mj_step1(m, d); }, error))
+    mujoco_failed(error);
+  end_watch();
+}
+
+void SimulationState::begin_watch() {
+  counts_before = mjcf::WarningCounts::of(d);
+  time_before = d->time;
+  seen.any = false;
+  current_sink() = this;
+}
+
+void SimulationState::end_watch() {
+  if (current_sink() == this) current_sink() = nullptr;
+  const bool back = d->time < time_before;
+  bool risen = back;
+  for (int k = 0; k < mjNWARNING; ++k) risen |= d->warning[k].number != counts_before.number[k];
+  if (risen) {
+    check_warnings(back);
+  } else if (!seen.texts.empty()) {  // a message MuJoCo counts nowhere
+    for (const std::string& text : seen.texts) warn(source + ": warning: MuJoCo: " + text + "\n");
+    seen.texts.clear();
+  }
+}
+
+// MuJoCo's warning callback runs before mj_checkPos/Vel/Acc reset the data: the state it saw is kept for the
+// message (only the first of a step; a warning is the rare path).
+void SimulationState::mujoco_warning(const char* text) {
+  if (!seen.any) {
+    seen.any = true;
+    seen.time = d->time;
+    seen.qpos.assign(d->qpos, d->qpos + m->nq);
+    seen.qvel.assign(d->qvel, d->qvel + m->nv);
+    seen.qacc.assign(d->qacc, d->qacc + m->nv);
+    seen.ctrl.assign(d->ctrl, d->ctrl + m->nu);
+  }
+  if (seen.texts.size() < 8) seen.texts.emplace_back(text);
+}
+
+void SimulationState::check_warnings(bool time_went_back) {
+  std::string wrong;
+  int first = -1;
+  for (int w : counts_before.risen(d, time_went_back)) {
+    const mjcf::WarningSeverity severity = mjcf::warning_severity(w);
+    if (severity == mjcf::WarningSeverity::Ignore) continue;
+    mjcf::WarningFacts facts;
+    facts.warning = w;
+    facts.info = d->warning[w].lastinfo;
+    facts.time = seen.any ? seen.time : time_before;
+    if (seen.any) {
+      facts.qpos = seen.qpos.data();
+      facts.qvel = seen.qvel.data();
+      facts.qacc = seen.qacc.data();
+      facts.ctrl = seen.ctrl.data();
+    }
+    facts.emitted_timestep = emitted_timestep;
+    facts.prefix = prefix;
+    const std::string text = mjcf::describe_warning(m, facts);
+    d->warning[w].number = 0;  // the next one is counted (and handed to the callback) afresh
+    if (severity == mjcf::WarningSeverity::Wrong && on_instability == OnInstability::Throw) {
+      wrong += (wrong.empty() ? "" : "\n") + source + ": error: " + text;
+      if (first < 0) first = w;
+    } else {
+      warn(source + ": warning: " + text + "\n");
+    }
+  }
+  const double when = seen.any ? seen.time : time_before;
+  seen.any = false;
+  seen.texts.clear();
+  if (!wrong.empty()) {
+    throw SimulationError(wrong + "\n", when, first);
+  }
+}
+
+void SimulationState::mujoco_failed(const std::string& error) {
+  if (current_sink() == this) current_sink() = nullptr;
+  seen.any = false;
+  seen.texts.clear();
+  throw SimulationError(source + ": error: at t = " + std::to_string(time_before) +
+                            " s MuJoCo stopped on an error: " + error + "\n",
+                        time_before, -1);
+}
+
+void SimulationState::warn(std::string text) {
+  ++run_warnings;
+  if (run_warnings < kMaxRunWarnings) {
+    warnings.push_back(std::move(text));
+  } else if (run_warnings == kMaxRunWarnings) {
+    warnings.push_back(source + ": warning: more run warnings followed; they are not kept\n");
+  }
 }
 
 void SimulationState::before_step() {
@@ -454,6 +626,19 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
   for (int i = 0; i < count; ++i) {
     if (!std::isfinite(values[i])) throw SignalError("input `" + s.info.name + "` got a non-finite value");
   }
+  double clamped = 0;
+  if (count == 1 && (values[0] < s.low || values[0] > s.high)) {  // beyond what the model allows
+    clamped = std::clamp(values[0], s.low, s.high);
+    if (!s.clamp_said) {
+      s.clamp_said = true;
+      const bool own = s.low > -mjMAXVAL || s.high < mjMAXVAL;  // else MuJoCo's largest sound value
+      warn(source + ": warning: input `" + s.info.name + "` got " + mjcf::number(values[0]) + ", outside " +
+           (own ? "its range [" + mjcf::number(s.low) + ", " + mjcf::number(s.high) + "]"
+                : "the values MuJoCo takes (magnitude up to " + mjcf::number(mjMAXVAL) + ")") +
+           ": clamped to " + mjcf::number(clamped) + " (said once per input)\n");
+    }
+    values = &clamped;
+  }
   const int id = s.ids.empty() ? -1 : s.ids.front();
   switch (b.quantity) {
     case Quantity::Ctrl:
@@ -491,6 +676,12 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       return;
     }
     case Quantity::GearSelect:
+      if (!(std::abs(values[0]) <= 1e9)) {  // no gearbox has as many; and an int holds it
+        throw SignalError("input `" + s.info.name + "`: gear " + mjcf::number(values[0]) +
+                          " is not one of its " + std::to_string(gearboxes.at(id).forward.size()) +
+                          " forward and " + std::to_string(gearboxes.at(id).reverse.size()) +
+                          " reverse gears");
+      }
       select_gear(s, static_cast<int>(values[0]));
       return;
     case Quantity::DistanceTarget:

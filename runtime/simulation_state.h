@@ -11,9 +11,11 @@
 #include <utility>
 #include <vector>
 
+#include "mjcf_emitter/instability.h"
 #include "mjcf_emitter/signal_binding.h"
 #include "openplx/runtime/simulation.h"
 #include "runtime/drive_laws.h"
+#include "runtime/mujoco_messages.h"
 
 namespace openplx::runtime {
 
@@ -26,9 +28,11 @@ struct ResolvedSignal {
   int dof = -1;          // dof address (joints)
   double* direct = nullptr;  // Real signals that are one mjData number: its address (value = scale * *direct)
   double scale = 1.0;
-  const double* direct3 = nullptr;  // Vec3 outputs that are three consecutive mjData numbers
-  int bias = -1;                    // MotorForce: the motor's bias actuator, -1 when it has none
-  std::vector<int> parts;           // Composite: its parts' indices
+  const double* direct3 = nullptr;          // Vec3 outputs that are three consecutive mjData numbers
+  int bias = -1;                            // MotorForce: the motor's bias actuator, -1 when it has none
+  std::vector<int> parts;                   // Composite: its parts' indices
+  double low = -mjMAXVAL, high = mjMAXVAL;  // a Real input's range (clamped, said once); finite
+  bool clamp_said = false;
 };
 
 // What an interaction acts with when enabled, and whether it is (see Quantity::InteractionEnabled). Range
@@ -39,13 +43,31 @@ struct EffortSwitch {
   int bias = -1;  // a velocity motor's bias actuator
 };
 
-struct SimulationState {
+struct SimulationState : MessageSink {
   mjModel* m = nullptr;
   mjData* d = nullptr;
-  bool owns = true;  // deletes m and d (a Simulation's); a bridge on someone's model does not
+  bool owns = true;         // deletes m and d (a Simulation's); a bridge on someone's model does not
+  bool registered = false;  // in the bridges' registry (one bridge per mjData and prefix)
   std::string root;
   std::string xml;
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings;  // the transpilation's, then the run's (warn)
+  std::string source;                 // the model file or manifest, first in messages
+  std::string prefix;                 // the prefix of its MuJoCo names, stripped in messages
+  double emitted_timestep = 0;        // the time step the model was emitted for, 0: unknown
+  OnInstability on_instability = OnInstability::Throw;
+  std::vector<std::string> mismatches;  // bindings resolve refused: "`path`: why" (a bridge refuses them)
+  size_t run_warnings = 0;              // how many run warnings were given (at most kMaxRunWarnings are kept)
+  static constexpr size_t kMaxRunWarnings = 1000;
+  // A step being watched (begin_watch .. end_watch): MuJoCo's counters and time before it, and what its
+  // warning callback saw (the state before MuJoCo's reset).
+  mjcf::WarningCounts counts_before;
+  double time_before = 0;
+  struct Seen {
+    bool any = false;
+    double time = 0;
+    std::vector<double> qpos, qvel, qacc, ctrl;
+    std::vector<std::string> texts;
+  } seen;
   std::vector<ResolvedSignal> signals;
   std::unordered_map<std::string, int> by_name;   // path -> index into signals
   std::vector<Eigen::Vector3d> kinematic_linear;  // per mocap body: world velocities the inputs set
@@ -74,6 +96,13 @@ struct SimulationState {
   SimulationState(const SimulationState&) = delete;
   SimulationState& operator=(const SimulationState&) = delete;
   ~SimulationState();
+
+  void begin_watch();  // before a step: MuJoCo's counters and time; this state receives MuJoCo's warnings
+  void end_watch();    // after it: throws SimulationError (or warns) when a warning says it went wrong
+  void check_warnings(bool time_went_back);
+  void mujoco_warning(const char* text) override;
+  [[noreturn]] void mujoco_failed(const std::string& error);  // an mju_error inside a step
+  void warn(std::string text);                                // a run warning, kept while there is room
 
   void resolve(std::vector<mjcf::SignalBinding> bindings, const std::vector<mjcf::RuntimeLaw>& drive_laws);
   void select_gear(const ResolvedSignal& s, int gear);

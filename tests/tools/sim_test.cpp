@@ -115,3 +115,77 @@ TEST(Sim, ValueSyntax) {
 }
 
 }  // namespace
+
+// Issue 29: a run MuJoCo had to reset is exit 1 with the message, never a printed value.
+TEST(Sim, DivergingModelExitsOneWithTheMessage) {
+  const openplx::testing::ScratchDir scratch;
+  const fs::path model = scratch / "light_rod.openplx";
+  std::ofstream(model) << "Rod is Physics3D.Bodies.RigidBody:\n"
+                          "    inertia.mass: 0.001\n"
+                          "    geometry is Physics3D.Geometries.Box:\n"
+                          "        size: {0.05, 0.05, 1.0}\n"
+                          "    top is Physics3D.Interactions.MateConnector:\n"
+                          "        position.z: 0.5\n"
+                          "        main_axis: Math.Vec3.Y_AXIS()\n"
+                          "        normal: Math.Vec3.Z_AXIS()\n"
+                          "Pendulum is Physics3D.System:\n"
+                          "    pivot is Physics3D.Interactions.MateConnector:\n"
+                          "        main_axis: Math.Vec3.Y_AXIS()\n"
+                          "        normal: Math.Vec3.Z_AXIS()\n"
+                          "    rod is Rod\n"
+                          "    hinge is Physics3D.Interactions.Hinge:\n"
+                          "        connectors: [rod.top, pivot]\n"
+                          "    motor is Physics3D.Interactions.TorqueMotor:\n"
+                          "        connectors: [rod.top, pivot]\n";
+  const SimRun run = sim({model.string(), "--time", "1", "--at", "0.5", "motor.torque_input=1e8", "--print",
+                          "hinge.angle_output"});
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.out, "");  // no value printed for a run that went wrong
+  EXPECT_NE(run.err.find("light_rod.openplx: error: at t = 0.5 s"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("joint `hinge` in body `rod`"), std::string::npos) << run.err;
+}
+
+TEST(Sim, HostileOptionsAreErrors) {
+  const std::string drivetrain = std::string(OPENPLX_SAMPLES_DIR) + "/drivetrain_machine.openplx";
+  for (const char* gear : {"gear=2147483648", "gear=-2147483648", "gear=1e300", "gear=-1e300"}) {
+    const SimRun run = sim({drivetrain, "--time", "0.01", "--set", gear});
+    EXPECT_EQ(run.status, 1) << gear;
+    EXPECT_NE(run.err.find("is not one of its"), std::string::npos) << run.err;
+  }
+  const std::string pendulum = std::string(OPENPLX_SAMPLES_DIR) + "/pendulum.openplx";
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{{"--time", "nan"},
+                                                                                    {"--time", "inf"},
+                                                                                    {"--time", "1e300"},
+                                                                                    {"--timestep", "1e308"},
+                                                                                    {"--timestep", "1e-320"},
+                                                                                    {"--timestep", "nan"}}) {
+    std::vector<std::string> line = {pendulum};
+    line.insert(line.end(), args.begin(), args.end());
+    const SimRun run = sim(line);
+    EXPECT_EQ(run.status, 2) << args[0] << ' ' << args[1] << ": " << run.err;
+    EXPECT_NE(run.err.find("error:"), std::string::npos) << run.err;
+  }
+}
+
+TEST(Sim, NeverOverwritesTheModelWithTheCsv) {
+  const openplx::testing::ScratchDir scratch;
+  const fs::path model = scratch / "pendulum.openplx";
+  fs::copy_file(fs::path(OPENPLX_SAMPLES_DIR) / "pendulum.openplx", model);
+  const uintmax_t size = fs::file_size(model);
+  for (const fs::path& csv : {model, scratch / "." / "pendulum.openplx"}) {
+    const SimRun run = sim({model.string(), "--time", "0.01", "--csv", csv.string()});
+    EXPECT_EQ(run.status, 1);
+    EXPECT_NE(run.err.find("refusing to overwrite the input"), std::string::npos) << run.err;
+    EXPECT_EQ(fs::file_size(model), size);
+  }
+}
+
+TEST(Sim, ClampedInputIsSaid) {
+  const std::string drivetrain = std::string(OPENPLX_SAMPLES_DIR) + "/drivetrain_machine.openplx";
+  const SimRun run =
+      sim({drivetrain, "--time", "0.01", "--set", "throttle=5", "--at", "0.004", "throttle=7"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const size_t at = run.err.find("input `throttle` got 5, outside its range [0, 1]: clamped to 1");
+  EXPECT_NE(at, std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("input `throttle` got", at + 1), std::string::npos) << run.err;  // once
+}

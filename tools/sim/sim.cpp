@@ -1,6 +1,8 @@
 #include "tools/sim/sim.h"
 
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -95,8 +97,19 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
   load.bundle_paths = options.bundle_dirs;
   load.default_bundles = options.default_bundles;
   load.timestep = options.timestep;
+  if (!options.csv.empty()) {  // never overwrite the input
+    std::error_code ec;
+    if (std::filesystem::equivalent(options.csv, options.input, ec)) {
+      err << options.csv << ": error: the CSV file is the model file; refusing to overwrite the input\n";
+      return 1;
+    }
+  }
   rt::Simulation sim = rt::Simulation::load(options.input, load);
-  for (const std::string& w : sim.warnings()) err << w;
+  size_t warned = 0;  // warnings printed so far: the transpilation's, then the run's as they come
+  auto print_warnings = [&] {
+    for (; warned < sim.warnings().size(); ++warned) err << sim.warnings()[warned];
+  };
+  print_warnings();
   if (options.list) {
     list(sim, out);
     return 0;
@@ -129,7 +142,13 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
   size_t next = 0;
   const auto& assignments = options.assignments;
   const double h = sim.timestep();
-  const long steps = std::lround(options.time / h);
+  const double whole_steps = std::round(options.time / h);
+  if (whole_steps > static_cast<double>(rt::Simulation::kMaxAdvanceSteps)) {
+    err << "openplx-sim: error: --time " << options.time << " s at a time step of " << h << " s is "
+        << whole_steps << " steps, more than the " << rt::Simulation::kMaxAdvanceSteps << " a run takes\n";
+    return 2;
+  }
+  const long steps = static_cast<long>(whole_steps);
   const auto start = std::chrono::steady_clock::now();
   auto last_report = start;
   row();
@@ -137,8 +156,10 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
     // Inputs due at this time (half a step of slack: times are rounded to whole steps).
     while (next < assignments.size() && assignments[next].time <= sim.time() + 0.5 * h)
       apply(sim, assignments[next++]);
+    if (warned != sim.warnings().size()) print_warnings();  // an input clamped
     if (k == steps) break;
     sim.step();
+    if (warned != sim.warnings().size()) print_warnings();
     row();
     const auto now = std::chrono::steady_clock::now();
     if (now - last_report > std::chrono::seconds(2)) {  // long runs say how far they are
@@ -169,6 +190,8 @@ int run_sim(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << e.what();
   } catch (const rt::SignalError& e) {
     err << "openplx-sim: error: " << e.what() << '\n';
+  } catch (const rt::SimulationError& e) {  // what() is located: "FILE: error: at t = ..."
+    err << e.what();
   }
   return 1;
 }

@@ -110,6 +110,10 @@ std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args
         error = "--timestep needs a positive number of seconds, got '" + args[i] + "'";
         return std::nullopt;
       }
+      if (*h < kMinTimestep || *h > kMaxTimestep) {
+        error = "--timestep " + args[i] + " is outside what a simulation can use (1e-09 to 10 s)";
+        return std::nullopt;
+      }
       options.timestep = *h;
     } else if (arg == "--set") {
       if (!value()) return std::nullopt;

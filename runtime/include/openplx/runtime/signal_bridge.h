@@ -31,7 +31,12 @@ class SignalBridge {
  public:
   // `manifest`: the OUT.signals.json of the emitted model. `prefix`: the prefix its MuJoCo names carry in
   // `model`; empty: the one it was emitted with (the manifest records it). Throws LoadError when the
-  // manifest cannot be read or names elements `model` does not have.
+  // manifest cannot be read, is inconsistent in itself (a binding or law the runtime could not use), was
+  // written for another model (its fingerprint, over the model's own bodies and joints by name without
+  // the prefix, differs from `model`'s: see mjcf_emitter/model_fingerprint.h; manifests without one skip
+  // this), names any element `model` lacks or has of another kind, or when a bridge for the same prefix is
+  // already attached to `data` (two would disagree; the first must be destroyed before another attaches).
+  // Also installs MuJoCo's message handlers when none are set (runtime/README.md "MuJoCo's messages").
   static SignalBridge attach(const std::string& manifest, mjModel* model, mjData* data,
                              const std::string& prefix = "");
 
@@ -44,12 +49,21 @@ class SignalBridge {
   std::vector<SignalInfo> inputs() const;
   std::vector<SignalInfo> outputs() const;
 
+  // Around each mj_step: before_step() applies the drive laws and remembers MuJoCo's warning counters and
+  // time; after_step() throws SimulationError when a warning rose that means the step was not the model's
+  // motion (see simulation.h; MuJoCo's own reset stands) unless set_on_instability(Continue), then does
+  // its post-step work.
   void before_step();
   void after_step();
+  void set_on_instability(OnInstability what);
+  // Run warnings: inputs clamped to their range (once per input), MuJoCo's warnings and instabilities under
+  // OnInstability::Continue; each a line ending in '\n'.
+  const std::vector<std::string>& warnings() const;
 
  private:
   friend class Simulation;
   explicit SignalBridge(std::unique_ptr<SimulationState> state);
+  void register_own();
   std::unique_ptr<SimulationState> state_;
 };
 

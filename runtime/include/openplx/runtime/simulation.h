@@ -8,9 +8,11 @@
 // Names are OpenPLX paths relative to the root model ("pendulum.motor.torque_input"); a name that starts with
 // the root model's name ("PendulumScene.pendulum.motor.torque_input") is accepted too. Unknown names, wrong
 // value types, NaN/Inf and inputs MuJoCo cannot carry throw SignalError naming the signal; the state is then
-// untouched. Outputs read after step() describe the state after that step; forces and accelerations
-// describe the step just taken. Input and Output handles stay valid while their Simulation lives (moves
-// included).
+// untouched. Real inputs with a range the model gives (an actuator's control range, a clutch's engagement
+// fraction in [0, 1], a kinematic steering joint's limits) are clamped to it, and the first clamp of each
+// input is said once in warnings(). Outputs read after step() describe the state after that step; forces and
+// accelerations describe the step just taken. Input and Output handles stay valid while their Simulation
+// lives (moves included).
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -38,11 +40,38 @@ class SignalError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// The simulation left the model's motion: MuJoCo found a NaN, infinite or huge position, velocity or
+// acceleration (and reset its mjData to the initial state, time 0), a NaN or huge control (it zeroed the
+// controls), dropped contacts or constraints because its buffers were full, or stopped on an error of its
+// own. what() says when (the simulated time before MuJoCo's reset), what, which DOF and which OpenPLX joint
+// and body it belongs to, the values that blew up (when MuJoCo's warning reached the runtime's handler), and
+// a hint (the time step against the one the model was emitted for, a stiff spring, an unbounded input).
+class SimulationError : public std::runtime_error {
+ public:
+  SimulationError(const std::string& message, double time, int warning)
+      : std::runtime_error(message), time_(time), warning_(warning) {}
+  double time() const { return time_; }     // the simulated time it happened at, s
+  int warning() const { return warning_; }  // the mjtWarning, or -1 for an error MuJoCo stopped on
+ private:
+  double time_;
+  int warning_;
+};
+
+// What step() (and the bridge's after_step()) do when MuJoCo's warnings say the step was not the model's
+// motion (see SimulationError). Errors MuJoCo stops on (mju_error) always throw.
+enum class OnInstability {
+  Throw,     // throw SimulationError; mjData stays as MuJoCo left it (reset to the initial state for bad
+             // values), so a caller that catches it may go on from there knowingly
+  Continue,  // MuJoCo's own behaviour: its reset stands and stepping goes on; the description is added to
+             // warnings() instead (at most 1000 run warnings are kept)
+};
+
 struct LoadOptions {
   std::string model;                      // the root model; empty: the file's last model
   std::vector<std::string> bundle_paths;  // extra bundle folders (like openplx2mjcf -B)
   double timestep = 0.002;                // MuJoCo's time step, s (like openplx2mjcf --timestep)
   bool default_bundles = true;  // false: only bundle_paths and OPENPLX_BUNDLE_PATH (--no-default-bundles)
+  OnInstability on_instability = OnInstability::Throw;
 };
 
 enum class ValueType { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a composite robot signal
@@ -66,7 +95,7 @@ class SignalBridge;
 class Input {
  public:
   void set(double value) {
-    if (direct_ && std::isfinite(value)) {
+    if (direct_ && value >= low_ && value <= high_) {  // in range, so finite; else checked (clamped, NaN)
       *direct_ = value;
     } else {
       set_checked(value);
@@ -80,11 +109,13 @@ class Input {
 
  private:
   friend class SignalBridge;
-  Input(SimulationState* state, int index, double* direct) : state_(state), index_(index), direct_(direct) {}
+  Input(SimulationState* state, int index, double* direct, double low, double high)
+      : state_(state), index_(index), direct_(direct), low_(low), high_(high) {}
   void set_checked(double value);
   SimulationState* state_;
   int index_;
-  double* direct_;  // a Real input that is one mjData number, else null
+  double* direct_;     // a Real input that is one mjData number, else null
+  double low_, high_;  // the values the fast path writes as they are: its range, else all finite numbers
 };
 
 class Output {
@@ -114,7 +145,11 @@ class Output {
 // A model loaded from OpenPLX, with its own mjModel and mjData and one SignalBridge on them.
 class Simulation {
  public:
-  static Simulation load(const std::string& path, const LoadOptions& options = {});  // throws LoadError
+  // Throws LoadError for every reason it cannot load: an empty or missing path, a bundle folder of
+  // options.bundle_paths that does not exist, a time step outside [kMinTimestep, kMaxTimestep], the
+  // model's own errors, MuJoCo's. Installs MuJoCo's message handlers when none are set (runtime/README.md).
+  static Simulation load(const std::string& path, const LoadOptions& options = {});
+  static constexpr double kMinTimestep = 1e-9, kMaxTimestep = 10.0;  // s
 
   Simulation(Simulation&&) noexcept;
   Simulation& operator=(Simulation&&) noexcept;
@@ -123,8 +158,14 @@ class Simulation {
   Input input(std::string_view name);  // throws SignalError
   Output output(std::string_view name);
 
-  void step();                   // one MuJoCo step
-  void advance(double seconds);  // steps until time() has advanced by `seconds` (rounded to whole steps)
+  // One MuJoCo step. Throws SimulationError when MuJoCo's warnings say it was not the model's motion (unless
+  // set_on_instability(OnInstability::Continue)), and for an error MuJoCo stopped on.
+  void step();
+  // Steps until time() has advanced by `seconds` (rounded to whole steps). Throws std::invalid_argument for
+  // a negative or non-finite span or one of more than kMaxAdvanceSteps steps; SimulationError as step().
+  void advance(double seconds);
+  static constexpr long kMaxAdvanceSteps = 1'000'000'000;
+  void set_on_instability(OnInstability what);
   double time() const;
   double timestep() const;
 
@@ -136,8 +177,11 @@ class Simulation {
   std::vector<SignalInfo> inputs() const;
   std::vector<SignalInfo> outputs() const;
   const std::string& root_model() const;
-  const std::string& mjcf() const;                   // the MJCF the model was loaded from
-  const std::vector<std::string>& warnings() const;  // printed warnings of the transpilation
+  const std::string& mjcf() const;  // the MJCF the model was loaded from
+  // Printed warnings of the transpilation, then those of the run as they come (each a line ending in '\n'):
+  // an input clamped to its range (once per input), MuJoCo's own warnings, and instabilities under
+  // OnInstability::Continue.
+  const std::vector<std::string>& warnings() const;
 
  private:
   explicit Simulation(std::unique_ptr<SimulationState> state);

@@ -1,0 +1,129 @@
+#include "mjcf_emitter/model_fingerprint.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+namespace openplx::mjcf {
+
+namespace {
+
+// The part after `prefix`, or nullopt-like "" with `ours` false when the name is not the model's.
+bool strip(std::string_view name, std::string_view prefix, std::string_view& out) {
+  if (name.empty() || name.substr(0, prefix.size()) != prefix) return false;
+  out = name.substr(prefix.size());
+  return true;
+}
+
+struct Lines {
+  std::vector<std::string> lines;
+  int bodies = 0, joints = 0;
+
+  Fingerprint finish() {
+    std::sort(lines.begin(), lines.end());
+    uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
+    for (const std::string& line : lines) {
+      for (unsigned char c : line) h = (h ^ c) * 1099511628211ull;
+      h = (h ^ '\n') * 1099511628211ull;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
+    return {bodies, joints, hex};
+  }
+};
+
+void walk(const Element& body, std::string_view parent, std::string_view prefix, Lines& out) {
+  std::string_view self = parent;  // a body without a name of the model's is not counted
+  const std::string* name = body.get("name");
+  std::string_view stripped;
+  const bool ours = body.name() == "body" && name && strip(*name, prefix, stripped);
+  if (ours) {
+    self = stripped;
+    out.lines.push_back("body " + std::string(stripped) + " " + std::string(parent));
+    ++out.bodies;
+  }
+  for (const auto& child : body.children()) {
+    const std::string& tag = child->name();
+    if (tag == "body") {
+      walk(*child, ours ? self : std::string_view("-"), prefix, out);
+    } else if ((tag == "joint" || tag == "freejoint") && ours) {
+      const std::string* joint = child->get("name");
+      std::string_view joint_name;
+      if (!joint || !strip(*joint, prefix, joint_name)) continue;
+      const std::string* type = child->get("type");
+      const std::string kind = tag == "freejoint" ? "free" : type ? *type : "hinge";
+      out.lines.push_back("joint " + std::string(joint_name) + " " + kind + " " + std::string(self));
+      ++out.joints;
+    }
+  }
+}
+
+const char* joint_type(int type) {
+  switch (type) {
+    case mjJNT_FREE:
+      return "free";
+    case mjJNT_BALL:
+      return "ball";
+    case mjJNT_SLIDE:
+      return "slide";
+    default:
+      return "hinge";
+  }
+}
+
+}  // namespace
+
+std::string Fingerprint::text() const {
+  return "v1 bodies=" + std::to_string(bodies) + " joints=" + std::to_string(joints) + " hash=" + hash;
+}
+
+bool Fingerprint::parse(std::string_view text, Fingerprint& out) {
+  int bodies = 0, joints = 0;
+  char hash[17] = "";
+  const std::string copy(text);
+  int used = 0;
+  if (std::sscanf(copy.c_str(), "v1 bodies=%d joints=%d hash=%16[0-9a-f]%n", &bodies, &joints, hash, &used) !=
+          3 ||
+      static_cast<size_t>(used) != copy.size() || std::string_view(hash).size() != 16 || bodies < 0 ||
+      joints < 0)
+    return false;
+  out = {bodies, joints, hash};
+  return true;
+}
+
+Fingerprint model_fingerprint(const Element& document, std::string_view prefix) {
+  Lines out;
+  for (const auto& section : document.children()) {
+    if (section->name() != "worldbody") continue;
+    for (const auto& child : section->children()) {
+      if (child->name() == "body") walk(*child, "-", prefix, out);
+    }
+  }
+  return out.finish();
+}
+
+Fingerprint model_fingerprint(const mjModel* m, std::string_view prefix) {
+  Lines out;
+  auto name_of = [&](const int* address, int id, std::string_view& stripped) {
+    return strip(m->names + address[id], prefix, stripped);
+  };
+  for (int b = 1; b < m->nbody; ++b) {
+    std::string_view name, parent;
+    if (!name_of(m->name_bodyadr, b, name)) continue;
+    const int p = m->body_parentid[b];
+    if (p == 0 || !name_of(m->name_bodyadr, p, parent)) parent = "-";
+    out.lines.push_back("body " + std::string(name) + " " + std::string(parent));
+    ++out.bodies;
+  }
+  for (int j = 0; j < m->njnt; ++j) {
+    std::string_view name, body;
+    if (!name_of(m->name_jntadr, j, name) || !name_of(m->name_bodyadr, m->jnt_bodyid[j], body)) continue;
+    out.lines.push_back("joint " + std::string(name) + " " + joint_type(m->jnt_type[j]) + " " +
+                        std::string(body));
+    ++out.joints;
+  }
+  return out.finish();
+}
+
+}  // namespace openplx::mjcf

@@ -1,0 +1,34 @@
+// A model's fingerprint, written into its signal manifest so that a SignalBridge can tell whether the
+// mjModel it is attached to is the model the manifest was emitted with. It covers the model's own bodies
+// (with their parents) and joints (with their type and body), by name without the prefix, so that it holds
+// when the file is <include>d into a bigger scene with other (differently prefixed) models and when the
+// names carry another prefix than the one emitted. The emitter computes it from the MJCF document, the
+// runtime from the compiled mjModel (struct fields only, no MuJoCo call).
+//
+// Text: "v1 bodies=B joints=J hash=H" (H: 16 hex digits, FNV-1a over the sorted lines "body NAME PARENT"
+// and "joint NAME TYPE BODY", where PARENT is "-" for a body outside the model, e.g. the world).
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <string>
+#include <string_view>
+
+#include "mjcf_emitter/xml.h"
+
+namespace openplx::mjcf {
+
+struct Fingerprint {
+  int bodies = 0, joints = 0;
+  std::string hash;
+  std::string text() const;
+  // "v1 bodies=B joints=J hash=H" back; false when it is not one (another version, or damaged).
+  static bool parse(std::string_view text, Fingerprint& out);
+};
+
+// `document`: the emitted <mujoco> element; `prefix`: the one its names carry.
+Fingerprint model_fingerprint(const Element& document, std::string_view prefix);
+// The elements of `m` whose names start with `prefix` (all named ones when it is empty).
+Fingerprint model_fingerprint(const mjModel* m, std::string_view prefix);
+
+}  // namespace openplx::mjcf
