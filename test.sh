@@ -22,6 +22,14 @@ run_suite() {
     exit 1
   fi
   rmdir "$tmp"
+  # MuJoCo writes MUJOCO_LOG.TXT into the working folder unless its handlers are replaced: ours are, everywhere.
+  local logs
+  logs=$(find "$build" . -maxdepth 4 -name MUJOCO_LOG.TXT 2>/dev/null || true)
+  if [[ -n "$logs" ]]; then
+    echo "error: a test made MuJoCo write its log file (its warning/error handlers were not ours):" >&2
+    echo "$logs" >&2
+    exit 1
+  fi
 }
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null

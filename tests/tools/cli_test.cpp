@@ -193,6 +193,15 @@ TEST_F(Cli, NeverOverwritesTheInput) {
   EXPECT_EQ(read(file), kPendulum);
 }
 
+// The manifest beside the output is written too: an input that is that manifest's path is refused as well.
+TEST_F(Cli, NeverOverwritesTheInputWithTheManifest) {
+  const std::string text = "{\"not\": \"a model\"}\n";
+  std::string file = write("x.signals.json", text);
+  EXPECT_EQ(run({file, "-o", (dir_ / "x.xml").string()}), 2);
+  EXPECT_NE(err_.str().find("refusing to overwrite the input file"), std::string::npos) << err_.str();
+  EXPECT_EQ(read(file), text);
+  EXPECT_FALSE(fs::exists(dir_ / "x.xml"));
+}
 TEST_F(Cli, StrictTurnsWarningsIntoErrors) {
   std::string file = write("lenient.openplx", "trait T\n    a is Int: 1\nM:\n    with T\n");
   EXPECT_EQ(run({file}), 0);
