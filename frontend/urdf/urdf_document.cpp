@@ -54,6 +54,16 @@ UrdfDocument::UrdfDocument(std::string text) : text_(std::move(text)) {
     return;
   }
   well_formed_ = true;
+  std::map<std::pair<int, std::string>, uint32_t> counts;
+  std::vector<const XMLElement*> stack{robot_};
+  while (!stack.empty()) {  // document order
+    const XMLElement* e = stack.back();
+    stack.pop_back();
+    std::string tag = e->Name();
+    const uint32_t nth = counts[{e->GetLineNum(), tag}]++;
+    places_.emplace(e, Place{std::move(tag), nth});
+    for (const XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
+  }
   for (const XMLElement* e = robot_->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const char* name = e->Attribute("name");
     if (!name) continue;
@@ -71,16 +81,25 @@ uint32_t UrdfDocument::offset_of(const XMLElement* e) const {
   if (!e) return 0;
   const int line = e->GetLineNum();
   const uint32_t begin = offset_of_line(line);
-  const uint32_t end = static_cast<size_t>(line) < line_starts_.size() ? line_starts_[line]
-                                                                       : static_cast<uint32_t>(text_.size());
-  const std::string tag = std::string("<") + e->Name();
-  const std::string_view text = std::string_view(text_).substr(begin, end - begin);
-  for (size_t at = text.find(tag); at != std::string_view::npos; at = text.find(tag, at + 1)) {
-    const size_t after = at + tag.size();  // `<inertia` must not match `<inertial`
-    if (after >= text.size() || std::string_view(" \t\r\n/>").find(text[after]) != std::string_view::npos)
-      return begin + static_cast<uint32_t>(at);
+  const auto place = places_.find(e);
+  const std::string tag = place != places_.end() ? place->second.tag : std::string(e->Name());
+  auto [found, fresh] = tag_offsets_.try_emplace({line, tag});
+  std::vector<uint32_t>& offsets = found->second;
+  if (fresh) {
+    const uint32_t end = static_cast<size_t>(line) < line_starts_.size()
+                             ? line_starts_[line]
+                             : static_cast<uint32_t>(text_.size());
+    const std::string open = "<" + tag;
+    const std::string_view text = std::string_view(text_).substr(begin, end - begin);
+    for (size_t at = text.find(open); at != std::string_view::npos; at = text.find(open, at + 1)) {
+      const size_t after = at + open.size();  // `<inertia` must not match `<inertial`
+      if (after >= text.size() || std::string_view(" \t\r\n/>").find(text[after]) != std::string_view::npos)
+        offsets.push_back(begin + static_cast<uint32_t>(at));
+    }
   }
-  return begin;
+  if (offsets.empty()) return begin;
+  const uint32_t nth = place != places_.end() ? place->second.nth : 0;
+  return offsets[nth < offsets.size() ? nth : 0];
 }
 
 const XMLElement* UrdfDocument::named(const std::multimap<std::string, const XMLElement*>& index,
@@ -159,7 +178,27 @@ std::optional<UrdfFinding> UrdfDocument::loop_finding() const {
     }
     parent_joint.emplace(kid, j);
   }
+  // The links on a loop, found in one pass (each link has one parent): a walk up from every link would be
+  // quadratic in a long chain.
+  std::map<std::string, int> state;  // absent: not seen; 1: on the current walk; 2: done
+  std::set<std::string> on_loop;
+  for (const auto& [first, unused] : parent_joint) {
+    std::vector<std::string> walk;
+    std::string l = first;
+    while (!state.count(l)) {
+      state[l] = 1;
+      walk.push_back(l);
+      const auto up = parent_joint.find(l);
+      if (up == parent_joint.end()) break;
+      l = attribute(child(up->second, "parent"), "link");
+    }
+    if (state.count(l) && state[l] == 1 && parent_joint.count(walk.back())) {
+      for (auto it = std::find(walk.begin(), walk.end(), l); it != walk.end(); ++it) on_loop.insert(*it);
+    }
+    for (const std::string& w : walk) state[w] = 2;
+  }
   for (const auto& [start, unused] : links_) {
+    if (!on_loop.count(start)) continue;
     std::vector<const XMLElement*> path;
     std::set<std::string> seen;
     for (std::string l = start; parent_joint.count(l) && seen.insert(l).second;) {

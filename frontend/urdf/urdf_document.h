@@ -9,6 +9,8 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "frontend/urdf/urdf_result.h"
@@ -58,6 +60,16 @@ class UrdfDocument {
   bool well_formed_ = false;
   const tinyxml2::XMLElement* robot_ = nullptr;
   std::vector<uint32_t> line_starts_;
+  // Where each element's start tag is among those of its name on its line (document order), taken before
+  // any rewrite renames an element: the nth `<link` of a long line is the nth link on it.
+  struct Place {
+    std::string tag;
+    uint32_t nth = 0;
+  };
+  std::unordered_map<const tinyxml2::XMLElement*, Place> places_;
+  // The offsets of `<tag` on a line, found once per line and name: a URDF written on one line is scanned
+  // once per name, not once per element.
+  mutable std::map<std::pair<int, std::string>, std::vector<uint32_t>> tag_offsets_;
   std::multimap<std::string, const tinyxml2::XMLElement*> links_, joints_;
   std::vector<UrdfFinding> findings_;
   std::set<const tinyxml2::XMLElement*> capsules_;

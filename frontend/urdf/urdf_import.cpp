@@ -186,16 +186,18 @@ void declare_materials(Context& c, const urdf::ModelInterface& robot, const std:
         used.emplace(v->material_name.empty() ? link->name + "/" : v->material_name, v->material);
     }
   }
+  std::map<std::string, const XMLElement*> declared;  // top-level <material> by name, the last one
+  for (const XMLElement* e = c.doc.robot()->FirstChildElement("material"); e;
+       e = e->NextSiblingElement("material")) {
+    if (e->Attribute("name")) declared[e->Attribute("name")] = e;
+  }
   for (const auto& [name, material] : used) {
     // Internal names; one that cannot be an identifier is numbered instead.
     const std::string model =
         model_name + ".material." + (identifier_safe(name) ? name : std::to_string(c.materials.size()));
     c.materials[name] = model;
-    c.w.from(nullptr);
-    for (const XMLElement* e = c.doc.robot()->FirstChildElement("material"); e;
-         e = e->NextSiblingElement("material")) {
-      if (e->Attribute("name") && name == e->Attribute("name")) c.w.from(e);
-    }
+    const auto at = declared.find(name);
+    c.w.from(at == declared.end() ? nullptr : at->second);
     const urdf::Color& rgba = material->color;
     c.w.line(id(model) + " is Visuals.Materials.Material:");
     c.w.line("    with Visuals.Materials.SurfaceFeatures.BaseColor");
@@ -293,17 +295,48 @@ std::map<std::string, std::string> joint_attributes(const urdf::ModelInterface& 
 
 // Where each joint starts: at zero, or a mimic follower where its mimic puts it (offset + multiplier times
 // its leader's start), so that the coupling holds from the first step. Chains follow their leaders.
+// A follower starts at offset + multiplier * (its leader's start); a chain that loops back on itself stops
+// where it would repeat a joint, counted from the joint asked about.
 std::map<std::string, double> joint_starts(const urdf::ModelInterface& robot) {
   std::map<std::string, double> start;
   for (const auto& [name, joint] : robot.joints_) {
-    double value = 0, scale = 1;
+    if (start.count(name)) continue;
+    // Up the chain of leaders to a joint whose start is known, one that follows nobody, or a repeat.
+    std::vector<urdf::JointConstSharedPtr> chain;
     std::set<std::string> seen;
-    for (urdf::JointConstSharedPtr j = joint; j && j->mimic && seen.insert(j->name).second;) {
-      value += scale * j->mimic->offset;
-      scale *= j->mimic->multiplier;
+    double known = 0;
+    bool loops = false;
+    for (urdf::JointConstSharedPtr j = joint; j;) {
+      if (auto it = start.find(j->name); it != start.end()) {
+        known = it->second;
+        break;
+      }
+      if (!j->mimic) {
+        start[j->name] = 0;
+        break;
+      }
+      if (!seen.insert(j->name).second) {
+        loops = true;
+        break;
+      }
+      chain.push_back(j);
       j = robot.getJoint(j->mimic->joint_name);
     }
-    start[name] = value;
+    if (loops) {  // each joint of a loop sees its own truncation of it: no shared answer
+      double value = 0, scale = 1;
+      std::set<std::string> visited;
+      for (urdf::JointConstSharedPtr j = joint; j && j->mimic && visited.insert(j->name).second;) {
+        value += scale * j->mimic->offset;
+        scale *= j->mimic->multiplier;
+        j = robot.getJoint(j->mimic->joint_name);
+      }
+      start[name] = value;
+      continue;
+    }
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      known = (*it)->mimic->offset + (*it)->mimic->multiplier * known;
+      start[(*it)->name] = known;
+    }
   }
   return start;
 }
@@ -440,6 +473,16 @@ UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text,
   const auto root_link = robot->getRoot();
   const bool massless_root = !world_root && (!root_link->inertial || root_link->inertial->mass <= 0);
   const std::map<std::string, Eigen::Isometry3d> zero = zero_poses(*robot);
+  // The joints each link takes part in, in name order: a link's connectors without a walk over all joints
+  // (which made a 10,000-link chain quadratic).
+  std::map<std::string, std::vector<const urdf::Joint*>> joints_of_link;
+  const std::vector<const urdf::Joint*> no_joints;
+  for (const auto& joint : joints) {
+    if (joint->type == urdf::Joint::FLOATING) continue;
+    joints_of_link[joint->parent_link_name].push_back(joint.get());
+    if (joint->child_link_name != joint->parent_link_name)
+      joints_of_link[joint->child_link_name].push_back(joint.get());
+  }
   if (world_root) {
     for (const auto& joint : joints) {
       if (joint->parent_link_name != "world") continue;
@@ -499,8 +542,8 @@ UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text,
     if (link->name == root)
       w.connector("root_anchor", Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
                   "        ");
-    for (const auto& joint : joints) {
-      if (joint->type == urdf::Joint::FLOATING) continue;
+    const auto own = joints_of_link.find(link->name);
+    for (const urdf::Joint* joint : own == joints_of_link.end() ? no_joints : own->second) {
       const Eigen::Vector3d axis = joint_axis(*joint), normal = connector_normal(*joint);
       const std::string& a = attribute.at(joint->name);
       w.from(doc.joint(joint->name));

@@ -3,12 +3,13 @@
 // origins, `<capsule>`), and the blocks for other tools (`<transmission>`, `<mujoco>`, `<gazebo>`) that are
 // read by nobody here.
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <sstream>
+#include <string_view>
 
 #include "frontend/urdf/urdf_document.h"
 
@@ -41,14 +42,19 @@ const std::map<std::string, std::map<std::string, int>>& numeric_attributes() {
 }
 
 // The numbers of `text`, or nullopt with the first word that is not a finite number in `bad`.
+// Words split by hand: a std::istringstream per attribute cost more than the rest of the import.
 std::optional<std::vector<double>> numbers(const std::string& text, std::string& bad) {
-  std::istringstream words(text);
   std::vector<double> values;
-  for (std::string word; words >> word;) {
+  constexpr std::string_view kSpace = " \t\n\v\f\r";  // what `>>` skips in the classic locale
+  for (size_t begin = text.find_first_not_of(kSpace); begin != std::string::npos;
+       begin = text.find_first_not_of(kSpace, begin)) {
+    const size_t stop = std::min(text.find_first_of(kSpace, begin), text.size());
+    const std::string_view word(text.data() + begin, stop - begin);
+    begin = stop;
     double v = 0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
     if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) {
-      bad = word;
+      bad = std::string(word);
       return std::nullopt;
     }
     values.push_back(v);
