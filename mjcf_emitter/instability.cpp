@@ -68,11 +68,27 @@ std::string unbounded_inputs(const mjModel* m, const WarningFacts& f, int joint)
     const bool on_joint =
         (m->actuator_trntype[a] == mjTRN_JOINT || m->actuator_trntype[a] == mjTRN_JOINTINPARENT) &&
         m->actuator_trnid[2 * a] == joint;
-    if (!on_joint || m->actuator_ctrllimited[a]) continue;
+    // Force motors only: a spring (affine bias) pulls back whatever its control.
+    if (!on_joint || m->actuator_ctrllimited[a] || m->actuator_biastype[a] != mjBIAS_NONE) continue;
     text += (text.empty() ? "" : ", ") + named("actuator", stripped(m, m->name_actuatoradr, a, f.prefix), a);
     if (f.ctrl) text += " (control " + number(f.ctrl[a]) + ")";
   }
   return text;
+}
+
+// The joint's own stiffness and that of springs emitted as actuators on it (an affine bias pulling back
+// in proportion to the position: force = gain ctrl + b0 + b1 length, b1 < 0; length = gear q).
+double stiffness(const mjModel* m, int joint) {
+  double k = m->jnt_stiffness[joint];
+  for (int a = 0; a < m->nu; ++a) {
+    const bool on_joint =
+        (m->actuator_trntype[a] == mjTRN_JOINT || m->actuator_trntype[a] == mjTRN_JOINTINPARENT) &&
+        m->actuator_trnid[2 * a] == joint;
+    if (!on_joint || m->actuator_biastype[a] != mjBIAS_AFFINE) continue;
+    const double gear = m->actuator_gear[6 * a], b1 = m->actuator_biasprm[a * mjNBIAS + 1];
+    if (b1 < 0) k += -b1 * gear * gear;
+  }
+  return k;
 }
 
 std::string hint(const mjModel* m, const WarningFacts& f, int joint, int dof) {
@@ -84,10 +100,11 @@ std::string hint(const mjModel* m, const WarningFacts& f, int joint, int dof) {
   } else {
     text += "a smaller time step (now " + number(h) + " s) may keep it stable; ";
   }
-  if (joint >= 0 && dof >= 0 && m->jnt_stiffness[joint] > 0 && m->dof_M0[dof] > 0) {
-    const double period = 2 * kPi * std::sqrt(m->dof_M0[dof] / m->jnt_stiffness[joint]);
-    text += "its spring (stiffness " + number(m->jnt_stiffness[joint]) + ") swings with a period of " +
-            number(period) + " s, which needs a time step below about " + number(period / 10) + " s; ";
+  const double k = joint >= 0 ? stiffness(m, joint) : 0;
+  if (dof >= 0 && k > 0 && m->dof_M0[dof] > 0) {
+    const double period = 2 * kPi * std::sqrt(m->dof_M0[dof] / k);
+    text += "its springs (stiffness " + number(k) + ") swing with a period of " + number(period) +
+            " s, which needs a time step below about " + number(period / 10) + " s; ";
   } else {
     text += "look for stiff springs or compliance (periods near the time step) on or near it; ";
   }

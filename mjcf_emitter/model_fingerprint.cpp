@@ -103,9 +103,13 @@ Fingerprint model_fingerprint(const Element& document, std::string_view prefix) 
   return out.finish();
 }
 
-Fingerprint model_fingerprint(const mjModel* m, std::string_view prefix) {
+Fingerprint model_fingerprint(const mjModel* m, std::string_view prefix, const std::vector<bool>* bodies) {
   Lines out;
+  auto kept = [&](int body) {
+    return !bodies || (static_cast<size_t>(body) < bodies->size() && (*bodies)[body]);
+  };
   auto name_of = [&](const int* address, int id, std::string_view& stripped) {
+    if (address == m->name_bodyadr && !kept(id)) return false;
     return strip(m->names + address[id], prefix, stripped);
   };
   for (int b = 1; b < m->nbody; ++b) {

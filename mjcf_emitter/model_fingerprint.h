@@ -13,6 +13,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mjcf_emitter/xml.h"
 
@@ -28,7 +29,10 @@ struct Fingerprint {
 
 // `document`: the emitted <mujoco> element; `prefix`: the one its names carry.
 Fingerprint model_fingerprint(const Element& document, std::string_view prefix);
-// The elements of `m` whose names start with `prefix` (all named ones when it is empty).
-Fingerprint model_fingerprint(const mjModel* m, std::string_view prefix);
+// The elements of `m` whose names start with `prefix` (all named ones when it is empty). `bodies`, when
+// given (m->nbody flags), keeps only the bodies it flags and their joints: without a prefix, a scene's
+// other models can be left out by keeping only the body trees the manifest's own elements are in.
+Fingerprint model_fingerprint(const mjModel* m, std::string_view prefix,
+                              const std::vector<bool>* bodies = nullptr);
 
 }  // namespace openplx::mjcf

@@ -66,6 +66,26 @@ std::vector<std::string> missing_elements(const Manifest& read, const mjModel* m
   return missing;
 }
 
+// The bodies in the trees (below a child of the world) of the bodies, joints and sites the manifest names.
+std::vector<bool> named_trees(const Manifest& read, const mjModel* model) {
+  std::vector<bool> roots(static_cast<size_t>(model->nbody), false), trees(roots.size(), false);
+  for (const mjcf::SignalBinding& b : read.signals) {
+    if (b.quantity == mjcf::Quantity::None || composed(b.quantity)) continue;
+    for (const std::string& name : b.names) {
+      const int id = mj_name2id(model, object_type(b.object), name.c_str());
+      if (id < 0) continue;
+      const int body = b.object == mjcf::MjObject::Body    ? id
+                       : b.object == mjcf::MjObject::Joint ? model->jnt_bodyid[id]
+                       : b.object == mjcf::MjObject::Site  ? model->site_bodyid[id]
+                                                           : -1;
+      if (body > 0) roots[static_cast<size_t>(model->body_rootid[body])] = true;
+    }
+  }
+  for (int body = 1; body < model->nbody; ++body)
+    trees[static_cast<size_t>(body)] = roots[static_cast<size_t>(model->body_rootid[body])];
+  return trees;
+}
+
 std::string list(const std::vector<std::string>& items, size_t most) {
   std::string text;
   for (size_t k = 0; k < items.size() && k < most; ++k) text += (k ? ", " : "") + items[k];
@@ -103,12 +123,18 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
     if (!mjcf::Fingerprint::parse(read.fingerprint, expected))
       throw LoadError(manifest + ": error: its fingerprint `" + read.fingerprint +
                       "` is not one this runtime reads (a newer openplx2mjcf wrote it?)\n");
-    const mjcf::Fingerprint found = mjcf::model_fingerprint(model, used_prefix);
-    // Without a prefix, a scene's other models' elements count too: then only the names below are checked.
-    const bool scene =
-        used_prefix.empty() && (found.bodies > expected.bodies || found.joints > expected.joints);
-    if (!scene &&
-        (found.bodies != expected.bodies || found.joints != expected.joints || found.hash != expected.hash)) {
+    mjcf::Fingerprint found = mjcf::model_fingerprint(model, used_prefix);
+    auto same = [&] {
+      return found.bodies == expected.bodies && found.joints == expected.joints &&
+             found.hash == expected.hash;
+    };
+    // Without a prefix, a scene's other models count too: then only the body trees that hold the elements the
+    // manifest names (every body has signals) are the model's.
+    if (!same() && used_prefix.empty()) {
+      const std::vector<bool> trees = named_trees(read, model);
+      found = mjcf::model_fingerprint(model, used_prefix, &trees);
+    }
+    if (!same()) {
       throw LoadError(manifest + ": error: the manifest was written for another model: it describes " +
                       std::to_string(expected.bodies) + " bodies and " + std::to_string(expected.joints) +
                       " joints (fingerprint " + expected.hash + "), the model's own are " +
