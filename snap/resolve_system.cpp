@@ -3,6 +3,7 @@
 #include "frontend/large_stack.h"
 #include "snap/unread_attributes.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -637,25 +638,33 @@ class SystemBuilder {
     const fe::Value& b = list->array()[1];
     if (interaction.kind == Interaction1D::Kind::DistanceRange ||
         interaction.kind == Interaction1D::Kind::DistanceMotor) {  // between any two connectors
-      for (size_t k = 0; k < view_.connectors.size(); ++k) {
-        if (a.kind == fe::Value::Kind::Object && view_.connectors[k].object == a.object)
-          interaction.connectors[0] = static_cast<int>(k);
-        if (b.kind == fe::Value::Kind::Object && view_.connectors[k].object == b.object)
-          interaction.connectors[1] = static_cast<int>(k);
+      for (int side = 0; side < 2; ++side) {
+        const fe::Value& end = side == 0 ? a : b;
+        if (end.kind != fe::Value::Kind::Object) continue;
+        if (auto it = connector_of_.find(end.object); it != connector_of_.end())
+          interaction.connectors[side] = it->second;
       }
       return;
     }
+    if (a.kind != fe::Value::Kind::Object || b.kind != fe::Value::Kind::Object) return;
+    if (mate_by_connectors_.empty()) index_mates_by_connectors();
+    if (auto it = mate_by_connectors_.find(connector_pair(a.object, b.object));
+        it != mate_by_connectors_.end())
+      interaction.mate = it->second;
+  }
+
+  // Either order of two connectors, as one key.
+  static uint64_t connector_pair(fe::ObjectId x, fe::ObjectId y) {
+    return static_cast<uint64_t>(std::min(x, y)) << 32 | std::max(x, y);
+  }
+  // The first mate of each pair of connectors: an interaction finds its mate by one lookup, not by a walk
+  // over all mates (quadratic for a 10,000-joint URDF, one range per joint).
+  void index_mates_by_connectors() {
     for (size_t m = 0; m < view_.mates.size(); ++m) {
       const fe::Value* mate_list = ev_.value(view_.mates[m].object, "connectors");
       if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array().size() != 2) continue;
-      const fe::Value& x = mate_list->array()[0];
-      const fe::Value& y = mate_list->array()[1];
-      const bool same =
-          (x.object == a.object && y.object == b.object) || (x.object == b.object && y.object == a.object);
-      if (same && a.kind == fe::Value::Kind::Object && b.kind == fe::Value::Kind::Object) {
-        interaction.mate = static_cast<int>(m);
-        return;
-      }
+      mate_by_connectors_.emplace(connector_pair(mate_list->array()[0].object, mate_list->array()[1].object),
+                                  static_cast<int>(m));
     }
   }
 
@@ -1245,6 +1254,7 @@ class SystemBuilder {
   std::unordered_map<fe::ObjectId, int> node_of_;
   std::vector<std::pair<int, fe::ObjectId>> redirects_;  // connector index, its redirected_parent
   std::unordered_map<fe::ObjectId, int> connector_of_;
+  std::unordered_map<uint64_t, int> mate_by_connectors_;  // see index_mates_by_connectors
   std::vector<fe::ObjectId> reference_bodies_;
   fe::ObjectId last_owner_ = fe::kNoObject;  // see owner_path
   const std::string* last_owner_path_ = nullptr;
