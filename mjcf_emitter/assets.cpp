@@ -1,8 +1,10 @@
 // Lowering pass, assets: <material>s from visual materials and <mesh>es from files or vertices.
+#include "mjcf_emitter/asset_files.h"
 #include "mjcf_emitter/lowering.h"
 
 #include <cctype>
 #include <filesystem>
+#include <sstream>
 
 namespace openplx::mjcf {
 
@@ -46,6 +48,12 @@ void Lowering::emit_texture(Element& material, const sn::VisualMaterial& m, cons
   if (!fs::is_regular_file(t.file, ec)) {
     sink_.report(fe::DiagCode::MjcfMissingAsset, t.where,
                  "texture file " + t.file + " of " + where + " not found");
+    return;
+  }
+  // Only what the material looks like depends on it: a file MuJoCo could not read is left out, warned.
+  if (const std::string problem = png_file_problem(t.file); !problem.empty()) {
+    warn(t.where, "texture file " + t.file + " of " + where + " is no PNG image MuJoCo can read (" + problem +
+                      "); the texture was left out and the material keeps its colour");
     return;
   }
   if (!t.swizzle.empty())
@@ -115,6 +123,25 @@ std::string Lowering::mesh_asset(const sn::Geometry& g) {
     sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
                  "mesh file " + g.file + " of `" + g.path + "` is " + ext +
                      "; MuJoCo 2.2.2 reads OBJ, binary STL and MSH");
+    return {};
+  }
+  // A file MuJoCo cannot make a mesh of fails the user's load (or crashes it): an error for a mesh that
+  // collides or has mass; a visual one is left out, warned.
+  const bool scale_valid = g.scale.allFinite() && (g.scale.array() != 0).all();
+  std::string problem = scale_valid ? mesh_file_problem(g.file) : "";
+  if (!scale_valid) {  // not through number(): a non-finite number written is the emitter's backstop
+    std::ostringstream scale;
+    scale << g.scale.x() << " " << g.scale.y() << " " << g.scale.z();
+    problem = "its scale " + scale.str() + " is not finite and non-zero";
+  }
+  if (!problem.empty()) {
+    const std::string message =
+        "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + problem;
+    if (g.visual) {
+      warn(g.where, message + "; this visual geometry was left out");
+    } else {
+      sink_.report(fe::DiagCode::MjcfBadAsset, g.where, message);
+    }
     return {};
   }
   std::string file = g.file;

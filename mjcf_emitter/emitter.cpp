@@ -19,11 +19,8 @@ Emitted Lowering::run() {
       .set("fusestatic", "false")
       .set("discardvisual", "false");
   root.add("option").set("timestep", options_.timestep).set("gravity", gravity()).set("integrator", "Euler");
-  // Track links touch wheels and ground in many places at once: room for 16 contacts (64 constraint rows)
-  // per link beyond MuJoCo 2.2.2's defaults (100 contacts, 500 rows), which would otherwise drop contacts.
-  int links = 0;
-  for (const sn::TrackSystem& t : view_.tracks) links += std::max(0, t.link_count);
-  if (links > 0) root.add("size").set("njmax", 500 + 64 * links).set("nconmax", 100 + 16 * links);
+  // Room for track links' contacts, sized by the tracks pass (tracks.cpp) once it knows the links it made.
+  if (!view_.tracks.empty()) size_ = &root.add("size");
   for (const sn::Unsupported& u : view_.unsupported) {
     warn(u.where, "`" + u.path + "` is a " + u.type +
                       ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
@@ -78,7 +75,19 @@ Eigen::Vector3d Lowering::gravity() {
 
 Emitted emit_mjcf(const snap::ResolvedSystem& system, const EmitOptions& options,
                   frontend::DiagnosticSink& sink) {
-  return Lowering(system, options, sink).run();
+  const size_t non_finite = non_finite_numbers_written();
+  Emitted out = Lowering(system, options, sink).run();
+  // A backstop: the value checks (snap, the evaluator) refuse bad numbers at the user's line; one that still
+  // got through is our bug, and an error rather than a file MuJoCo would choke on.
+  if (non_finite_numbers_written() != non_finite) {
+    const std::string where = out.document.first_non_finite();
+    sink.report(fe::DiagCode::MjcfInternal,
+                system.root >= 0 ? system.nodes[system.root].where : fe::SourceRange{},
+                "internal error: the MJCF would hold a number that is not finite" +
+                    (where.empty() ? std::string() : " (" + where + ")") +
+                    "; nothing was written. Please report this model");
+  }
+  return out;
 }
 
 }  // namespace openplx::mjcf

@@ -261,6 +261,7 @@ class Lowering {
   std::map<int, std::pair<int, double>> actuator_ctrl_;  // motor interaction -> actuator index, initial ctrl
   size_t actuator_count_ = 0;
   Element* assets_ = nullptr;
+  Element* size_ = nullptr;  // <size>, when the model has tracks (tracks.cpp fills it in or drops it)
   struct DriveEdge {
     int from;        // shaft
     int to;          // shaft, -1 for an actuator

@@ -15,6 +15,15 @@ namespace {
 
 constexpr int kChainLinks = 40;
 
+// Track links touch wheels and ground in many places at once: room for 4 contacts (16 constraint rows) per
+// link beyond MuJoCo 2.2.2's defaults (100 contacts, 500 rows). A driven 200-link track used at most 1.7
+// contacts and 7 rows per link. MuJoCo 2.2.2 allocates its stack dense in the rows (about 40 rows^2 bytes:
+// 1 GB at 300 links, and 200 links of the old 64 rows per link no longer loaded), so the links of all tracks
+// together are bounded by kMaxLinks, which snap/resolve_system.cpp also holds each track's link_count to.
+constexpr int kRowsPerLink = 16;
+constexpr int kContactsPerLink = 4;
+constexpr int kMaxLinks = 300;
+
 struct Circle {
   Eigen::Vector2d centre;
   double radius;
@@ -77,17 +86,28 @@ class BeltLine {
 }  // namespace
 
 void Lowering::emit_tracks(Element& root) {
+  int64_t links = 0;  // of the tracks emitted
   for (const sn::TrackSystem& t : view_.tracks) {
-    const bool wheels_known = std::all_of(t.wheels.begin(), t.wheels.end(),
-                                          [](const auto& w) { return w.connector >= 0 && w.radius > 0; });
-    constexpr int kMaxLinks = 2000;  // each link is a body: more would swamp MuJoCo's quadratic compiler
+    const bool wheels_known = std::all_of(t.wheels.begin(), t.wheels.end(), [](const auto& w) {
+      return w.connector >= 0 && w.radius > 0 && std::isfinite(w.radius);
+    });
     if (t.wheels.size() < 2 || !wheels_known || t.link_count < 3 || t.link_count > kMaxLinks ||
-        !(t.link_width > 0) || !(t.link_height > 0)) {
+        !(t.link_width > 0) || !(t.link_height > 0) || !std::isfinite(t.link_width + t.link_height)) {
       warn(t.where, "track system `" + t.path +
-                        "` needs two or more wheels with radii and center connectors and 3 to 2000 links of "
-                        "positive width and height; its track was left out");
+                        "` needs two or more wheels with radii and center connectors and 3 to " +
+                        std::to_string(kMaxLinks) +
+                        " links of positive width and height; its track was left out");
       continue;
     }
+    if (links + t.link_count > kMaxLinks) {
+      sink_.report(fe::DiagCode::MjcfTooLarge, t.where,
+                   "track system `" + t.path + "` brings the model's track links to " +
+                       std::to_string(links + t.link_count) + "; MuJoCo 2.2.2 cannot allocate the contact " +
+                       "room of more than " + std::to_string(kMaxLinks) + " links in one model (fewer, " +
+                       "longer links would do)");
+      continue;
+    }
+    links += t.link_count;
     // The belt's plane: across the first wheel's axle, through the wheels' centres.
     const sn::Transform first = snap_.connector_world[t.wheels.front().connector];
     const Eigen::Vector3d axle = first.rotation * Eigen::Vector3d::UnitZ();
@@ -184,6 +204,13 @@ void Lowering::emit_tracks(Element& root) {
              " m on hinges: its flexibility, damping, bending range and tension initialisation are not "
              "mapped, and its wheels drive it by friction");
   }
+  if (!size_) return;
+  if (links == 0) {
+    drop_empty(root, "size");
+    return;
+  }
+  const int n = static_cast<int>(links);  // at most kMaxLinks
+  size_->set("njmax", 500 + kRowsPerLink * n).set("nconmax", 100 + kContactsPerLink * n);
 }
 
 }  // namespace openplx::mjcf

@@ -39,7 +39,30 @@ void append_escaped(std::string& out, std::string_view text) {
   }
 }
 
+// A number token that is no finite number, as to_chars writes them ("inf", "-nan").
+bool non_finite_token(std::string_view token) {
+  if (!token.empty() && token.front() == '-') token.remove_prefix(1);
+  return token == "inf" || token == "nan";
+}
+
+// MJCF attributes whose values are names (of the element or of what it refers to), never numbers.
+bool names_something(std::string_view key) {
+  for (std::string_view k :
+       {"name",     "model",   "class", "childclass", "body",    "body1",  "body2",    "joint",
+        "joint1",   "joint2",  "geom",  "geom1",      "geom2",   "site",   "tendon",   "mesh",
+        "material", "texture", "file",  "hfield",     "objname", "target", "actuator", "type"}) {
+    if (key == k) return true;
+  }
+  return false;
+}
+
+thread_local size_t non_finite_written = 0;
+
 }  // namespace
+
+size_t non_finite_numbers_written() {
+  return non_finite_written;
+}
 
 std::string number(double value) {
   std::string out;
@@ -86,6 +109,7 @@ char* write_short_decimal(char* at, double value) {
 }  // namespace
 
 char* write_number(char* at, double value) {
+  if (!std::isfinite(value)) ++non_finite_written;
   if (value == 0.0) {  // also folds -0, which MuJoCo reads the same
     *at = '0';
     return at + 1;
@@ -158,6 +182,25 @@ const std::string* Element::get(std::string_view key) const {
     if (k == key) return &v;
   }
   return nullptr;
+}
+
+std::string Element::first_non_finite() const {
+  std::vector<const Element*> stack{this};
+  while (!stack.empty()) {
+    const Element& e = *stack.back();
+    stack.pop_back();
+    for (const auto& [key, value] : e.attributes_) {
+      if (names_something(key)) continue;  // a body named "inf" is no number
+      for (size_t start = 0; start <= value.size();) {
+        const size_t end = std::min(value.find(' ', start), value.size());
+        if (non_finite_token(std::string_view(value).substr(start, end - start)))
+          return "<" + e.name_ + " " + key + "=\"" + value + "\">";
+        start = end + 1;
+      }
+    }
+    for (auto it = e.children_.rbegin(); it != e.children_.rend(); ++it) stack.push_back(it->get());
+  }
+  return {};
 }
 
 std::string Element::to_string() const {

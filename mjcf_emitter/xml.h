@@ -21,6 +21,9 @@ inline constexpr size_t kNumberChars = 32;  // the longest double ("-1.797693134
 char* write_number(char* at, double value);
 // Numbers separated by single spaces ("0 0 1.5"), as MJCF writes vectors.
 std::string numbers(std::initializer_list<double> values);
+// How many NaNs and infinities write_number has written on this thread: none may reach an MJCF (MuJoCo
+// reads them, then fails or blows up), so the emitter counts them as a backstop behind the value checks.
+size_t non_finite_numbers_written();
 
 class Element {
  public:
@@ -46,6 +49,8 @@ class Element {
 
   // The whole tree as XML text (iterative, so deep trees cannot exhaust the stack).
   std::string to_string() const;
+  // The first attribute in the tree holding a NaN or an infinity, as `<name key="value">`; empty if none.
+  std::string first_non_finite() const;
 
  private:
   std::string name_;

@@ -56,7 +56,19 @@ class SlotTable {
 // only while the evaluator tracks reads, as it does while resolve_system builds the view.
 class AttributeReader {
  public:
-  explicit AttributeReader(frontend::Evaluator& evaluator) : ev_(evaluator) {}
+  explicit AttributeReader(frontend::Evaluator& evaluator, frontend::DiagnosticSink* sink = nullptr)
+      : ev_(evaluator), sink_(sink) {}
+
+  // Values nothing can simulate (a negative mass, an infinite position) are invalid-value errors at the
+  // user's line (value_checks.cpp), reported to the sink given at construction, if any.
+  // Where `object.name`'s value was written: the user's assignment of it or of the object holding it (a
+  // vector written whole), else where the user declared the object; a bundle's default is no user's line.
+  frontend::SourceRange written_at(frontend::ObjectId object, std::string_view name) const;
+  // Reports "`path.name` is VALUE; RULE" unless `valid`; returns `valid`.
+  bool require(bool valid, frontend::ObjectId object, std::string_view name, double value,
+               std::string_view rule);
+  // The same for each component of a Math.Vec3 (x, y, z) or Math.Quat (also w) attribute: all finite.
+  bool require_finite_components(frontend::ObjectId vector, std::string_view rule);
 
   frontend::Evaluator& evaluator() { return ev_; }
   const frontend::ObjectGraph& graph() const { return ev_.graph(); }
@@ -147,6 +159,7 @@ class AttributeReader {
 
  private:
   frontend::Evaluator& ev_;
+  frontend::DiagnosticSink* sink_;
   // Vectors and quaternions are read on every transform and connector.
   SlotTable<3> xyz_{{"x", "y", "z"}};
   SlotTable<4> xyzw_{{"x", "y", "z", "w"}};

@@ -9,14 +9,34 @@ namespace fe = openplx::frontend;
 
 namespace {
 
-std::vector<double> reals(AttributeReader& in, fe::ObjectId id, std::string_view name) {
+// A list of gear ratios: each finite and not 0 (a ratio of 0 would hold the output still, or divide by 0).
+std::vector<double> ratios(AttributeReader& in, fe::ObjectId id, std::string_view name) {
   std::vector<double> out;
   const fe::Value* v = in.evaluator().value(id, name);
   if (v && v->kind == fe::Value::Kind::Array) {
-    for (const fe::Value& item : v->array())
-      if (item.is_number()) out.push_back(item.as_real());
+    for (const fe::Value& item : v->array()) {
+      if (!item.is_number()) continue;
+      out.push_back(item.as_real());
+      in.require(std::isfinite(out.back()) && out.back() != 0, id, name, out.back(),
+                 "a gear ratio is a finite number other than 0");
+    }
   }
   return out;
+}
+
+double ratio(AttributeReader& in, fe::ObjectId id, std::string_view name) {
+  const double r = in.real(id, name, 1.0);
+  in.require(std::isfinite(r) && r != 0, id, name, r, "a gear ratio is a finite number other than 0");
+  return r;
+}
+
+// A number that must be finite and 0 or positive (capacities, durations, densities).
+double nonnegative(AttributeReader& in, fe::ObjectId id, std::string_view name, double fallback,
+                   std::string_view what) {
+  const double v = in.real(id, name, fallback);
+  in.require(std::isfinite(v) && v >= 0, id, name, v,
+             std::string(what) + " is a finite number, 0 or positive");
+  return v;
 }
 
 // Pairs (x, y) read from a list of objects, sorted by x.
@@ -29,25 +49,32 @@ Curve pairs(AttributeReader& in, fe::ObjectId id, std::string_view list, std::st
 }
 
 void read_friction_coupling(AttributeReader& in, fe::ObjectId id, DriveCoupling& c) {
-  c.torque_capacity = in.real(id, "torque_capacity", 0.0);
+  c.torque_capacity = nonnegative(in, id, "torque_capacity", 0.0, "a torque capacity");
   c.engagement_fraction = in.real(id, "initial_engagement_fraction", 1.0);
+  in.require(c.engagement_fraction >= 0 && c.engagement_fraction <= 1, id, "initial_engagement_fraction",
+             c.engagement_fraction, "an engagement fraction is from 0 to 1");
   // AGX's threshold for locking the plates (README "Clutches and brakes"): MuJoCo's friction rows stick and
   // slip by the solver alone, so it has nothing to set. Read, so it is not reported as ignored.
   (void)in.number(id, "min_relative_slip_ratio");
   c.automatic = in.graph().at(id).has("engagement_duration");
   if (!c.automatic) return;
   c.initially_engaged = in.boolean(id, "initially_engaged").value_or(false);
-  c.engagement_duration = in.real(id, "engagement_duration", 0.1);
-  c.disengagement_duration = in.real(id, "disengagement_duration", 0.1);
+  c.engagement_duration = nonnegative(in, id, "engagement_duration", 0.1, "a duration");
+  c.disengagement_duration = nonnegative(in, id, "disengagement_duration", 0.1, "a duration");
 }
 
 // Flexibility (LinearElastic stiffness), damping (MechanicalDamping) and viscosity (viscous friction).
 void read_compliance(AttributeReader& in, fe::ObjectId id, DriveCoupling& c) {
-  if (const fe::ObjectId f = in.object(id, "flexibility"); f != fe::kNoObject)
+  if (const fe::ObjectId f = in.object(id, "flexibility"); f != fe::kNoObject) {
     c.stiffness = in.real(f, "stiffness", kInf);
+    in.require(c.stiffness >= 0, f, "stiffness", c.stiffness,
+               "a stiffness is 0 or positive (Math.INF: rigid)");
+  }
   if (const fe::ObjectId d = in.object(id, "dissipation"); d != fe::kNoObject) {
-    c.damping = in.real(d, "damping_constant", 0.0);
+    c.damping = nonnegative(in, d, "damping_constant", 0.0, "a damping constant");
     c.viscosity = in.real(d, "viscosity", kInf);
+    in.require(c.viscosity >= 0, d, "viscosity", c.viscosity,
+               "a viscosity is 0 or positive (Math.INF: none)");
   }
 }
 
@@ -90,11 +117,11 @@ void read_drive_parameters(AttributeReader& in, fe::ObjectId id, DriveCoupling& 
   using Kind = DriveCoupling::Kind;
   switch (c.kind) {
     case Kind::Gear:
-      c.ratio = in.real(id, "ratio", 1.0);
+      c.ratio = ratio(in, id, "ratio");
       read_compliance(in, id, c);
       break;
     case Kind::Differential:
-      c.ratio = in.real(id, "gear_ratio", 1.0);
+      c.ratio = ratio(in, id, "gear_ratio");
       c.locked_up = in.boolean(id, "locked_up").value_or(false);
       c.breakaway_torque = in.real(id, "breakaway_torque", -1.0);
       break;
@@ -103,9 +130,10 @@ void read_drive_parameters(AttributeReader& in, fe::ObjectId id, DriveCoupling& 
       read_friction_coupling(in, id, c);
       break;
     case Kind::GearBox:
-      c.forward_gears = reals(in, id, "forward_gears");
-      c.reverse_gears = reals(in, id, "reverse_gears");
-      c.initial_gear = static_cast<int>(in.real(id, "initial_gear", 0.0));
+      c.forward_gears = ratios(in, id, "forward_gears");
+      c.reverse_gears = ratios(in, id, "reverse_gears");
+      // Clamped into an int (2^31 would not fit); a gear the lists lack is warned by the emitter.
+      c.initial_gear = static_cast<int>(std::clamp(in.real(id, "initial_gear", 0.0), -1e9, 1e9));
       c.has_neutral_gear = in.boolean(id, "has_neutral_gear").value_or(true);
       read_compliance(in, id, c);
       break;

@@ -1,5 +1,7 @@
 #include "snap/read_parameters.h"
 
+#include <cmath>
+
 #include "snap/resolve_system.h"
 
 namespace openplx::snap {
@@ -8,12 +10,28 @@ namespace fe = openplx::frontend;
 
 namespace {
 
+constexpr std::string_view kStiffnessRule = "a stiffness is 0 or positive (Math.INF: rigid)";
+constexpr std::string_view kDampingRule =
+    "a damping constant or relaxation time is a finite number, 0 or positive";
+
+// A stiffness (infinite: rigid) or a damping constant / relaxation time (finite), refused when negative.
+double stiffness(AttributeReader& in, fe::ObjectId elastic) {
+  const double k = in.real(elastic, "stiffness");
+  in.require(k >= 0, elastic, "stiffness", k, kStiffnessRule);
+  return k;
+}
+std::optional<double> damping(AttributeReader& in, fe::ObjectId dissipation, std::string_view name) {
+  const std::optional<double> d = in.number(dissipation, name);
+  if (d) in.require(std::isfinite(*d) && *d >= 0, dissipation, name, *d, kDampingRule);
+  return d;
+}
+
 Damping read_damping(AttributeReader& in, fe::ObjectId dissipation) {
   Damping d;
   if (dissipation == fe::kNoObject) return d;
   d.given = true;
-  d.damping_constant = in.number(dissipation, "damping_constant");
-  d.relaxation_time = in.number(dissipation, "relaxation_time");
+  d.damping_constant = damping(in, dissipation, "damping_constant");
+  d.relaxation_time = damping(in, dissipation, "relaxation_time");
   return d;
 }
 
@@ -24,6 +42,10 @@ MateFriction read_friction(AttributeReader& in, fe::ObjectId mate, const char* a
   f.type = in.type_name(friction);
   f.coefficient = in.real(friction, "coefficient");
   f.normal_force = in.real(friction, "normal_force");
+  in.require(std::isfinite(f.coefficient) && f.coefficient >= 0, friction, "coefficient", f.coefficient,
+             "a friction coefficient is a finite number, 0 or positive");
+  in.require(std::isfinite(f.normal_force) && f.normal_force >= 0, friction, "normal_force", f.normal_force,
+             "a normal force is a finite number, 0 or positive");
   return f;
 }
 
@@ -44,12 +66,12 @@ void read_mate_parameters(AttributeReader& in, fe::ObjectId id, Mate& mate) {
     const char* direction = Mate::kDirections[k];
     if (flexibility != fe::kNoObject) {
       if (const fe::ObjectId elastic = in.object(flexibility, direction); elastic != fe::kNoObject)
-        dof.stiffness = in.real(elastic, "stiffness");
+        dof.stiffness = stiffness(in, elastic);
     }
     if (dissipation != fe::kNoObject) {
       if (const fe::ObjectId d = in.object(dissipation, direction); d != fe::kNoObject) {
-        dof.damping_constant = in.number(d, "damping_constant");
-        dof.relaxation_time = in.number(d, "relaxation_time");
+        dof.damping_constant = damping(in, d, "damping_constant");
+        dof.relaxation_time = damping(in, d, "relaxation_time");
       }
     }
   }
@@ -71,7 +93,7 @@ void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interacti
     case K::LinearSpring:
     case K::TorsionSpring:
       if (const fe::ObjectId flexibility = in.object(id, "flexibility"); flexibility != fe::kNoObject)
-        i.stiffness = in.real(flexibility, "stiffness");
+        i.stiffness = stiffness(in, flexibility);
       i.rest = in.real(id, i.kind == K::LinearSpring ? "position" : "angle");
       i.damping = read_damping(in, in.object(id, "dissipation"));
       break;
@@ -132,8 +154,11 @@ VisualMaterial read_visual_material(AttributeReader& in, fe::ObjectId id) {
 
 void read_contact_parameters(AttributeReader& in, fe::ObjectId id, ContactModel& model) {
   model.enabled = in.boolean(id, "enabled").value_or(true);
-  if (const fe::ObjectId friction = in.object(id, "friction"); friction != fe::kNoObject)
+  if (const fe::ObjectId friction = in.object(id, "friction"); friction != fe::kNoObject) {
     model.friction = in.real(friction, "coefficient", 1.0);
+    in.require(std::isfinite(model.friction) && model.friction >= 0, friction, "coefficient", model.friction,
+               "a friction coefficient is a finite number, 0 or positive");
+  }
   model.normal_restitution = in.real(id, "normal_restitution");
   model.tangential_restitution = in.real(id, "tangential_restitution");
 }
@@ -150,6 +175,7 @@ Gravity read_gravity(AttributeReader& in, fe::ObjectId root) {
   }
   g.kind = Gravity::Kind::Uniform;
   g.vector = {in.real(vector, "x"), in.real(vector, "y"), in.real(vector, "z")};
+  in.require_finite_components(vector, "gravity is finite");
   return g;
 }
 

@@ -3,7 +3,9 @@
 #include "frontend/large_stack.h"
 #include "snap/unread_attributes.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -64,7 +66,7 @@ fe::SourceRange source_with(const fe::ObjectGraph& graph, fe::ObjectId id, Above
 class SystemBuilder {
  public:
   SystemBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink)
-      : ev_(evaluator), in_(evaluator), sink_(sink) {
+      : ev_(evaluator), in_(evaluator, &sink), sink_(sink) {
     fe::Program& program = evaluator.program();
     // Roles are checked against models the evaluation loaded; a bundle it never loaded cannot be a base of
     // anything, and loading it here would only cost time (Terrain, Vehicles, DriveTrain for a simple arm).
@@ -213,8 +215,11 @@ class SystemBuilder {
     switch (role.kind) {
       case Role::Kind::Shaft: {
         const fe::ObjectId inertia = object(id, "inertia");
-        view_.shafts.push_back(
-            {id, path_of(id), inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0), where_of(id)});
+        const double moment = inertia == fe::kNoObject ? 1.0 : real(inertia, "inertia", 1.0);
+        if (inertia != fe::kNoObject)
+          in_.require(std::isfinite(moment) && moment >= 0, inertia, "inertia", moment,
+                      "a shaft's moment of inertia is a positive number of kg m^2");
+        view_.shafts.push_back({id, path_of(id), moment, where_of(id)});
         break;
       }
       case Role::Kind::Coupling: {
@@ -452,13 +457,22 @@ class SystemBuilder {
       body.dynamic = d->bool_value;
     if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
       body.mass = real(inertia, "mass");
-      if (std::optional<Eigen::Matrix3d> tensor = inertia_tensor(inertia)) body.inertia = *tensor;
+      in_.require(std::isfinite(body.mass) && body.mass >= 0, inertia, "mass", body.mass,
+                  "a mass is 0 (computed from the geometries) or a positive number of kg");
+      if (std::optional<Eigen::Matrix3d> tensor = inertia_tensor(inertia)) {
+        body.inertia = *tensor;
+        check_inertia_tensor(inertia, *tensor);
+      }
     }
     if (fe::ObjectId kinematics = object(id, "kinematics"); kinematics != fe::kNoObject) {
       if (std::optional<Transform> cm = transform_of(kinematics, std::string_view("local_cm_transform")))
         body.cm = *cm;
       body.initial_linear_velocity = vec3(kinematics, "initial_local_linear_velocity");
       body.initial_angular_velocity = vec3(kinematics, "initial_local_angular_velocity");
+      for (const char* velocity : {"initial_local_linear_velocity", "initial_local_angular_velocity"}) {
+        if (const fe::ObjectId v = object(kinematics, velocity); v != fe::kNoObject)
+          in_.require_finite_components(v, "an initial velocity is finite");
+      }
     }
   }
 
@@ -902,8 +916,21 @@ class SystemBuilder {
     const auto [position, rotation] = transform_slots_.of(ev_.graph().at(transform));
     Transform t;
     t.position = in_.vec3(transform, position);
+    if (!t.position.allFinite()) {
+      if (const fe::ObjectId p = in_.object(transform, position); p != fe::kNoObject)
+        in_.require_finite_components(p, "a position is finite");
+    }
     if (const fe::ObjectId q = in_.object(transform, rotation); q != fe::kNoObject) {
       const auto [x, y, z, w] = in_.xyzw(q);
+      const double norm = std::sqrt(x * x + y * y + z * z + w * w);
+      if (!std::isfinite(norm)) {
+        in_.require_finite_components(q, "a rotation quaternion is finite");
+      } else if (!(norm > 1e-12)) {
+        // No rotation at all rather than the identity: taking one for the other would be silently wrong.
+        in_.require(false, transform, "rotation", norm,
+                    "a rotation quaternion has a length (it is normalised); {0, 0, 0, 0} is none, and the "
+                    "identity is {0, 0, 0, 1}");
+      }
       t.rotation = natives::quat_normal(natives::quat_from_xyzw(x, y, z, w));
     }
     return t;
@@ -922,6 +949,24 @@ class SystemBuilder {
     const Transform t = affine(transform);
     if (shared) default_transforms_.emplace(shared, t);
     return t;
+  }
+
+  // A tensor MuJoCo can hold: finite, principal moments 0 or positive and each at most the sum of the other
+  // two (MuJoCo's own test, which it would otherwise fail at load, unlocated). A zero tensor means
+  // "computed".
+  void check_inertia_tensor(fe::ObjectId inertia, const Eigen::Matrix3d& tensor) {
+    if (!tensor.allFinite()) {
+      in_.require(false, inertia, "tensor", tensor.maxCoeff(), "an inertia tensor is finite");
+      return;
+    }
+    if (tensor.isZero()) return;
+    const Eigen::Matrix3d symmetric = (tensor + tensor.transpose()) / 2;
+    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(symmetric).eigenvalues();
+    const double largest = moments.cwiseAbs().maxCoeff(), slack = 1e-12 * largest;
+    if (in_.require(moments.minCoeff() >= -slack, inertia, "tensor", moments.minCoeff(),
+                    "its principal moments must be 0 or positive (the smallest is shown)"))
+      in_.require(moments[0] + moments[1] + slack >= moments[2], inertia, "tensor", moments[2],
+                  "its largest principal moment (shown) exceeds the sum of the other two, which no body has");
   }
 
   // An Inertia's tensor (Math.Matrix3x3), read once per type when it is a pending default.
@@ -1096,6 +1141,15 @@ class SystemBuilder {
       const fe::ObjectId description =
           links == fe::kNoObject ? fe::kNoObject : object(links, "link_description");
       t.link_count = links == fe::kNoObject ? 0 : count(links, "link_count");
+      if (links != fe::kNoObject) {
+        // Each link is a body with contacts: MuJoCo 2.2.2 allocates its constraint rows dense (rows^2), so
+        // a few hundred links is what it can hold.
+        const double written = real(links, "link_count");
+        constexpr int kMaxTrackLinks = 300;  // mjcf_emitter/tracks.cpp: the same bound (kMaxLinks)
+        in_.require(written >= 3 && written <= kMaxTrackLinks, links, "link_count", written,
+                    "a track has 3 to " + std::to_string(kMaxTrackLinks) +
+                        " links (more would not fit the constraint memory MuJoCo 2.2.2 allocates)");
+      }
       if (description != fe::kNoObject) {
         t.link_width = real(description, "width");
         t.link_height = real(description, "height");

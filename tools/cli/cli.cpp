@@ -309,8 +309,9 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     if (matched) {
       char* end = nullptr;
       options.timestep = std::strtod(value.c_str(), &end);
-      if (value.empty() || *end != '\0' || !(options.timestep > 0) || !std::isfinite(options.timestep)) {
-        error = "--timestep takes a positive number of seconds, not '" + value + "'";
+      // A step MuJoCo can take: below 1 us the simulation never advances; above 1 s nothing stays stable.
+      if (value.empty() || *end != '\0' || !(options.timestep >= 1e-6 && options.timestep <= 1)) {
+        error = "--timestep takes a positive number of seconds from 1e-06 to 1, not '" + value + "'";
         return std::nullopt;
       }
       continue;

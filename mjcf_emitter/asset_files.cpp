@@ -1,0 +1,243 @@
+#include "mjcf_emitter/asset_files.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+namespace openplx::mjcf {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMaxCoordinate = 1 << 30;  // MuJoCo 2.2.2 calls larger vertices invalid
+constexpr uint32_t kMaxStlFaces = 200000;   // and reads at most this many STL triangles
+
+bool read_all(const std::string& path, std::string& bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream text;
+  text << in.rdbuf();
+  bytes = text.str();
+  return true;
+}
+
+template <typename T>
+T little_endian(const std::string& bytes, size_t at) {
+  T value;
+  std::memcpy(&value, bytes.data() + at, sizeof(T));  // x86 and ARM Linux are little-endian
+  return value;
+}
+
+uint32_t big_endian32(const std::string& bytes, size_t at) {
+  uint32_t v = 0;
+  for (size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
+  return v;
+}
+
+struct Mesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> faces;  // 0-based
+};
+
+std::string bad_vertex(const Eigen::Vector3d& v, size_t index) {
+  if (v.allFinite() && v.cwiseAbs().maxCoeff() <= kMaxCoordinate) return {};
+  std::ostringstream text;
+  text << "vertex " << index + 1 << " is " << v.x() << " " << v.y() << " " << v.z()
+       << " (MuJoCo takes finite coordinates up to 2^30)";
+  return text.str();
+}
+
+std::string read_stl(const std::string& bytes, Mesh& mesh) {
+  if (bytes.size() < 84)
+    return "it is " + std::to_string(bytes.size()) + " bytes, shorter than a binary STL header";
+  const auto faces = little_endian<uint32_t>(bytes, 80);
+  if (faces < 1 || faces > kMaxStlFaces)
+    return "it claims " + std::to_string(faces) +
+           " triangles (MuJoCo 2.2.2 reads binary STL of 1 to 200000; " + "ASCII STL it cannot read)";
+  if (bytes.size() != 84 + 50 * static_cast<uint64_t>(faces))
+    return "it is " + std::to_string(bytes.size()) + " bytes, where " + std::to_string(faces) +
+           " triangles take " + std::to_string(84 + 50 * static_cast<uint64_t>(faces)) +
+           " (truncated, or ASCII STL, which MuJoCo 2.2.2 cannot read)";
+  for (uint32_t f = 0; f < faces; ++f) {
+    std::array<int, 3> face;
+    for (int k = 0; k < 3; ++k) {
+      const size_t at = 84 + 50 * static_cast<size_t>(f) + 12 + 12 * k;
+      mesh.vertices.emplace_back(little_endian<float>(bytes, at), little_endian<float>(bytes, at + 4),
+                                 little_endian<float>(bytes, at + 8));
+      face[k] = static_cast<int>(mesh.vertices.size() - 1);
+    }
+    mesh.faces.push_back(face);
+  }
+  return {};
+}
+
+// An OBJ index ("3", "3/1", "3//2", "-1") as a 0-based vertex index; -1 when it names no vertex so far.
+int obj_index(const std::string& token, size_t vertices) {
+  char* end = nullptr;
+  const long k = std::strtol(token.c_str(), &end, 10);
+  if (end == token.c_str() || (*end != '\0' && *end != '/')) return -1;
+  const long n = static_cast<long>(vertices);
+  const long index = k > 0 ? k - 1 : n + k;
+  return k != 0 && index >= 0 && index < n ? static_cast<int>(index) : -1;
+}
+
+std::string read_obj(const std::string& bytes, Mesh& mesh) {
+  std::istringstream lines(bytes);
+  std::string line;
+  for (size_t number = 1; std::getline(lines, line); ++number) {
+    std::istringstream words(line);
+    std::string kind;
+    words >> kind;
+    const std::string at = "line " + std::to_string(number) + ": ";
+    if (kind == "v") {
+      std::vector<double> values;
+      for (std::string word; words >> word;) {
+        char* end = nullptr;
+        values.push_back(std::strtod(word.c_str(), &end));
+        if (*end != '\0') return at + "vertex coordinate '" + word + "' is no number";
+      }
+      if (values.size() < 3 || values.size() > 7)  // x y z, optionally w or a colour
+        return at + "a vertex of " + std::to_string(values.size()) + " numbers, not 3";
+      mesh.vertices.emplace_back(values[0], values[1], values[2]);
+      if (std::string bad = bad_vertex(mesh.vertices.back(), mesh.vertices.size() - 1); !bad.empty())
+        return at + bad;
+    } else if (kind == "f") {
+      std::vector<int> corners;
+      for (std::string word; words >> word;) {
+        corners.push_back(obj_index(word, mesh.vertices.size()));
+        if (corners.back() < 0) return at + "face corner '" + word + "' names no vertex before it";
+      }
+      if (corners.size() < 3) return at + "a face of fewer than 3 corners";
+      for (size_t k = 1; k + 1 < corners.size(); ++k)
+        mesh.faces.push_back({corners[0], corners[k], corners[k + 1]});
+    }
+  }
+  return {};
+}
+
+std::string read_msh(const std::string& bytes, Mesh& mesh) {
+  if (bytes.size() < 16) return "it is shorter than an MSH header";
+  const auto nvert = little_endian<int32_t>(bytes, 0), nnormal = little_endian<int32_t>(bytes, 4),
+             ntexcoord = little_endian<int32_t>(bytes, 8), nface = little_endian<int32_t>(bytes, 12);
+  if (nvert < 0 || nnormal < 0 || ntexcoord < 0 || nface < 0) return "its header has negative counts";
+  const uint64_t expected = 16 + 12 * static_cast<uint64_t>(nvert) + 12 * static_cast<uint64_t>(nnormal) +
+                            8 * static_cast<uint64_t>(ntexcoord) + 12 * static_cast<uint64_t>(nface);
+  if (bytes.size() != expected)
+    return "it is " + std::to_string(bytes.size()) + " bytes where its header's counts take " +
+           std::to_string(expected);
+  for (int32_t v = 0; v < nvert; ++v) {
+    const size_t at = 16 + 12 * static_cast<size_t>(v);
+    mesh.vertices.emplace_back(little_endian<float>(bytes, at), little_endian<float>(bytes, at + 4),
+                               little_endian<float>(bytes, at + 8));
+  }
+  const size_t faces_at = 16 + 12 * static_cast<size_t>(nvert + nnormal) + 8 * static_cast<size_t>(ntexcoord);
+  for (int32_t f = 0; f < nface; ++f) {
+    std::array<int, 3> face;
+    for (int k = 0; k < 3; ++k) {
+      face[k] = little_endian<int32_t>(bytes, faces_at + 12 * static_cast<size_t>(f) + 4 * k);
+      if (face[k] < 0 || face[k] >= nvert) return "face " + std::to_string(f + 1) + " names no vertex";
+    }
+    mesh.faces.push_back(face);
+  }
+  return {};
+}
+
+// What MuJoCo's compiler then needs: finite vertices, a solid hull for qhull (not all on one plane), and
+// triangles of some area when there are triangles.
+std::string solid_problem(const Mesh& mesh) {
+  for (size_t k = 0; k < mesh.vertices.size(); ++k)
+    if (std::string bad = bad_vertex(mesh.vertices[k], k); !bad.empty()) return bad;
+  if (mesh.vertices.size() < 4)
+    return "it has " + std::to_string(mesh.vertices.size()) + " vertices; a solid needs 4 or more";
+  const Eigen::Vector3d& origin = mesh.vertices.front();
+  Eigen::Vector3d far = origin;
+  for (const Eigen::Vector3d& v : mesh.vertices)
+    if ((v - origin).squaredNorm() > (far - origin).squaredNorm()) far = v;
+  const double size = (far - origin).norm();
+  const Eigen::Vector3d along = size > 0 ? Eigen::Vector3d((far - origin) / size) : Eigen::Vector3d::Zero();
+  Eigen::Vector3d off = Eigen::Vector3d::Zero();  // the farthest point from the line origin-far
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    const Eigen::Vector3d d = (v - origin) - (v - origin).dot(along) * along;
+    if (d.squaredNorm() > off.squaredNorm()) off = d;
+  }
+  double height = 0;  // the farthest distance from the plane through origin, far and off
+  if (off.norm() > 1e-9 * size) {
+    const Eigen::Vector3d normal = along.cross(off.normalized());
+    for (const Eigen::Vector3d& v : mesh.vertices)
+      height = std::max(height, std::abs((v - origin).dot(normal)));
+  }
+  if (!(size > 0) || height <= 1e-9 * size)
+    return "its vertices lie on one plane (or line, or point), so it encloses no volume and has no convex "
+           "hull";
+  if (!mesh.faces.empty()) {
+    double area = 0;
+    for (const auto& f : mesh.faces)
+      area += (mesh.vertices[f[1]] - mesh.vertices[f[0]])
+                  .cross(mesh.vertices[f[2]] - mesh.vertices[f[0]])
+                  .norm() /
+              2;
+    if (!(area > 1e-15)) return "its triangles have no area";
+  }
+  return {};
+}
+
+uint32_t crc32(const char* data, size_t size) {
+  uint32_t crc = 0xffffffffu;
+  for (size_t k = 0; k < size; ++k) {
+    crc ^= static_cast<unsigned char>(data[k]);
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+}  // namespace
+
+std::string mesh_file_problem(const std::string& path) {
+  std::string bytes;
+  if (!read_all(path, bytes)) return "it cannot be read";
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  Mesh mesh;
+  const std::string problem = ext == ".stl"   ? read_stl(bytes, mesh)
+                              : ext == ".msh" ? read_msh(bytes, mesh)
+                                              : read_obj(bytes, mesh);
+  if (!problem.empty()) return problem;
+  return solid_problem(mesh);
+}
+
+std::string png_file_problem(const std::string& path) {
+  std::string bytes;
+  if (!read_all(path, bytes)) return "it cannot be read";
+  static const char kSignature[] = "\x89PNG\r\n\x1a\n";
+  if (bytes.size() < 8 || bytes.compare(0, 8, kSignature, 8) != 0)
+    return "it does not start as a PNG file does";
+  bool header = false, data = false;
+  for (size_t at = 8;;) {
+    if (at + 12 > bytes.size()) return "it ends before its last chunk (IEND): truncated";
+    const uint32_t length = big_endian32(bytes, at);
+    if (length > bytes.size() - at - 12) return "a chunk runs past the end of the file: truncated";
+    const std::string type = bytes.substr(at + 4, 4);
+    if (crc32(bytes.data() + at + 4, 4 + length) != big_endian32(bytes, at + 8 + length))
+      return "its " + type + " chunk fails its checksum: the file is damaged";
+    if (!header) {
+      if (type != "IHDR" || length != 13) return "it does not begin with an image header (IHDR)";
+      if (big_endian32(bytes, at + 8) == 0 || big_endian32(bytes, at + 12) == 0)
+        return "its image has no pixels";
+      header = true;
+    }
+    data = data || type == "IDAT";
+    if (type == "IEND") return data ? std::string() : "it holds no image data (IDAT)";
+    at += 12 + length;
+  }
+}
+
+}  // namespace openplx::mjcf

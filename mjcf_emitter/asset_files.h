@@ -1,0 +1,18 @@
+// Mesh and image files read before MuJoCo reads them: a file MuJoCo 2.2.2 cannot use (garbage, truncated,
+// NaN vertices, a flat mesh qhull cannot wrap, a PNG that is none) otherwise fails the draft compile or the
+// user's load with an unlocated message, qhull's raw text on stderr, or a crash (an OBJ vertex of two
+// numbers). These checks follow MuJoCo 2.2.2's own readers (user_mesh.cc, lodepng), so a file that passes
+// them loads.
+#pragma once
+
+#include <string>
+
+namespace openplx::mjcf {
+
+// Why MuJoCo 2.2.2 cannot make a mesh of the OBJ, binary STL or MSH file at `path`; empty when it can.
+std::string mesh_file_problem(const std::string& path);
+
+// Why the file at `path` is no PNG image MuJoCo 2.2.2 can read; empty when it is one.
+std::string png_file_problem(const std::string& path);
+
+}  // namespace openplx::mjcf
