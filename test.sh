@@ -45,11 +45,12 @@ if [[ "${OPENPLX_SKIP_SANITIZERS:-0}" != "1" ]]; then
 fi
 
 if [[ "${OPENPLX_SKIP_FUZZ_BUILD:-0}" != "1" ]]; then
-  # Only the three fuzzer targets, configured as tools/fuzz.sh does; tools/fuzz.sh runs them.
+  # Only the fuzzer targets, configured as tools/fuzz.sh does; tools/fuzz.sh runs them.
   echo "== fuzz targets build (clang, libFuzzer + ASan + UBSan)"
   CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOPENPLX_FUZZ=ON \
     -DOPENPLX_BUILD_BENCH=OFF >/dev/null
-  cmake --build build-fuzz -j"$jobs" --target lex_parse_fuzzer evaluate_fuzzer urdf_fuzzer
+  cmake --build build-fuzz -j"$jobs" --target lex_parse_fuzzer evaluate_fuzzer urdf_fuzzer manifest_fuzzer \
+    runtime_input_fuzzer
 fi
 tools/check-format.sh
 echo "== all tests passed"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer target with clang (ASan+UBSan) and runs it.
-#   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer, urdf_fuzzer).
+#   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer, urdf_fuzzer,
+#                                       manifest_fuzzer, runtime_input_fuzzer).
 # Crashes land in fuzz-out/TARGET/crashes; add fixed ones to tests/fuzz/regressions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,15 +15,22 @@ corpus_dir=$(sed -n 's/^OPENPLX_CORPUS_DIR:PATH=//p' build-fuzz/CMakeCache.txt)
 out=fuzz-out/$target
 mkdir -p "$out/corpus" "$out/crashes"
 # Seeds: the real files, the reconstructed seed snippets and the saved regressions.
+dict=
 if [ "$target" = urdf_fuzzer ]; then
   find "$corpus_dir/urdf" tests/fuzz/regressions -name '*.urdf' -exec cp {} "$out/corpus/" \;
   dict=tests/fuzz/urdf.dict
+elif [ "$target" = manifest_fuzzer ]; then
+  # The emitter's manifests and the hostile ones (empty names, laws short of actuators, another model's).
+  find tests/golden/mjcf tests/fuzz/regressions -name '*.signals.json' -exec cp {} "$out/corpus/" \;
+elif [ "$target" = runtime_input_fuzzer ]; then
+  # Programs of input sets and steps (gears of 2^31 and 1e300, fractions of 5, NaN, huge velocities).
+  find tests/fuzz/regressions -name '*.runtime' -exec cp {} "$out/corpus/" \;
 else
   find "$corpus_dir" tests/seed_snippets tests/fuzz/regressions -name '*.openplx' -exec cp {} "$out/corpus/" \;
   dict=tests/fuzz/openplx.dict
 fi
 # urdfdom leaks its half-built tree on the URDFs it rejects (tools/lsan.supp says more): not ours to report.
 LSAN_OPTIONS=suppressions="$PWD/tools/lsan.supp" \
-  "build-fuzz/tests/fuzz/$target" "$out/corpus" -dict="$dict" \
+  "build-fuzz/tests/fuzz/$target" "$out/corpus" ${dict:+-dict="$dict"} \
   -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
   -artifact_prefix="$out/crashes/"

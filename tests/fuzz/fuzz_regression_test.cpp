@@ -1,5 +1,7 @@
 // Replays every saved fuzz input (crashes once found, now fixed) and the fuzz seeds through the fuzz body,
-// so a regression shows up in the normal test run and under the sanitizer pass.
+// so a regression shows up in the normal test run and under the sanitizer pass: .urdf files through the URDF
+// body, .signals.json through the manifest body, .runtime through the runtime-input body, the rest through
+// the lexer, parser and evaluator.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +11,7 @@
 
 #include "tests/fuzz/fuzz_evaluate.h"
 #include "tests/fuzz/fuzz_lex_parse.h"
+#include "tests/fuzz/fuzz_runtime.h"
 #include "tests/fuzz/fuzz_urdf.h"
 #include "tests/support/scratch_dir.h"
 
@@ -24,8 +27,13 @@ TEST(FuzzRegression, SavedInputsRunClean) {
     text << in.rdbuf();
     const std::string data = text.str();
     const auto* bytes = reinterpret_cast<const uint8_t*>(data.data());
+    const std::string name = entry.path().filename().string();
     if (entry.path().extension() == ".urdf") {
       openplx::fuzz::urdf_one(bytes, data.size(), scratch.path());
+    } else if (name.ends_with(".signals.json")) {  // manifest_fuzzer's
+      openplx::fuzz::manifest_one(bytes, data.size(), scratch.path());
+    } else if (entry.path().extension() == ".runtime") {  // runtime_input_fuzzer's
+      openplx::fuzz::runtime_input_one(bytes, data.size(), scratch.path());
     } else {
       openplx::fuzz::lex_parse_one(bytes, data.size());
       openplx::fuzz::evaluate_one(bytes, data.size());
@@ -33,4 +41,14 @@ TEST(FuzzRegression, SavedInputsRunClean) {
     ++count;
   }
   EXPECT_GT(count, 0u);
+}
+
+// The runtime bodies return early when their sample does not compile: then they would test nothing.
+TEST(FuzzRegression, RuntimeSamplesCompile) {
+  for (const char* sample : {"cart_pole.openplx", "drivetrain_machine.openplx"}) {
+    const openplx::fuzz::CompiledSample compiled = openplx::fuzz::compile_sample(sample);
+    EXPECT_NE(compiled.model, nullptr) << sample;
+    EXPECT_NE(compiled.manifest.find("\"fingerprint\": \"v1 bodies="), std::string::npos) << sample;
+    if (compiled.model) mj_deleteModel(compiled.model);
+  }
 }
