@@ -207,7 +207,7 @@ TEST(HostileInputs, LoadRefusesEmptyPathsMissingBundlesAndWildTimeSteps) {
               std::string::npos)
         << e.what();
   }
-  for (double h : {1e308, 1e-320, 0.0, -0.002, std::nan("")}) {
+  for (double h : {1e308, 2.0, 1e-7, 1e-320, 0.0, -0.002, std::nan("")}) {
     rt::LoadOptions step;
     step.timestep = h;
     EXPECT_THROW(rt::Simulation::load(pendulum, step), rt::LoadError) << h;

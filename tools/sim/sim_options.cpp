@@ -63,7 +63,7 @@ std::string sim_usage() {
          "a\n"
          "composite robot input, one value per target: {a, b, c, ...}.\n"
          "  --time T         simulated seconds (default 1)\n"
-         "  --timestep S     MuJoCo's time step in seconds (default 0.002)\n"
+         "  --timestep S     MuJoCo's time step in seconds, 1e-6 to 1 (default 0.002)\n"
          "  --set NAME=V     set an input before the first step\n"
          "  --at T NAME=V    set an input once the simulated time reaches T\n"
          "  --print NAME     print an output's final value as `NAME = value`\n"
@@ -111,7 +111,7 @@ std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args
         return std::nullopt;
       }
       if (*h < kMinTimestep || *h > kMaxTimestep) {
-        error = "--timestep " + args[i] + " is outside what a simulation can use (1e-09 to 10 s)";
+        error = "--timestep " + args[i] + " is outside what a simulation can use (1e-06 to 1 s)";
         return std::nullopt;
       }
       options.timestep = *h;

@@ -11,7 +11,7 @@
 namespace openplx::sim {
 
 // The time steps openplx::runtime::Simulation::load takes, s.
-inline constexpr double kMinTimestep = 1e-9, kMaxTimestep = 10.0;
+inline constexpr double kMinTimestep = 1e-6, kMaxTimestep = 1.0;
 
 struct SignalValue {
   std::vector<double> numbers;  // 1, 2 or 3 numbers

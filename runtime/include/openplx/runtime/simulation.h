@@ -149,7 +149,7 @@ class Simulation {
   // options.bundle_paths that does not exist, a time step outside [kMinTimestep, kMaxTimestep], the
   // model's own errors, MuJoCo's. Installs MuJoCo's message handlers when none are set (runtime/README.md).
   static Simulation load(const std::string& path, const LoadOptions& options = {});
-  static constexpr double kMinTimestep = 1e-9, kMaxTimestep = 10.0;  // s
+  static constexpr double kMinTimestep = 1e-6, kMaxTimestep = 1.0;  // s, as openplx2mjcf --timestep
 
   Simulation(Simulation&&) noexcept;
   Simulation& operator=(Simulation&&) noexcept;
