@@ -1,4 +1,6 @@
-// Lowering pass, contacts: <pair>s from SurfaceContact models and <exclude>s from collision filters.
+// Lowering pass, contacts: <pair>s from SurfaceContact models, <exclude>s from collision filters and, with
+// --exclude-initial-overlaps, for bodies whose collision geometry overlaps at the initial state.
+#include "mjcf_emitter/check.h"
 #include "mjcf_emitter/lowering.h"
 
 namespace openplx::mjcf {
@@ -62,6 +64,83 @@ void Lowering::emit_collision_filters(Element& root) {
       }
     }
   }
+}
+
+// --exclude-initial-overlaps: MuJoCo finds the contacts of the initial state in a draft of the finished
+// document; every pair of bodies overlapping there gets an <exclude> (sorted by name: the output stays
+// deterministic) and loses the <pair>s between them, which an exclude does not reach, with a note each.
+// Overlaps with the world's own geometry (ground planes, terrains, a system's shapes) are left: excluding a
+// body from it would let the body fall through the ground.
+void Lowering::exclude_initial_overlaps(Element& root) {
+  if (!options_.exclude_initial_overlaps || sink_.has_errors()) return;
+  const fe::SourceRange at_root = view_.root >= 0 ? view_.nodes[view_.root].where : fe::SourceRange{};
+  const DraftModel draft(root, options_.output_dir);
+  std::string error = draft.error();
+  const MuJoCoLibrary* mj = draft.model() ? mujoco_library(error) : nullptr;
+  std::vector<InitialOverlap> overlaps;
+  if (mj) {
+    const mjModel* m = draft.model();
+    MuJoCoMessages messages(*mj);
+    mjData* d = nullptr;
+    const std::string key = name("initial");
+    if (messages.call(
+            nullptr, [&] { d = mj->makeData(m); }, error) &&
+        d &&
+        messages.call(
+            d, [&] { reset_to_initial_state(*mj, m, d, key); }, error)) {
+      overlaps = overlapping_bodies(*mj, m, d);
+    } else {
+      mj = nullptr;
+    }
+    if (d) mj->deleteData(d);
+  }
+  if (!mj) {
+    warn(at_root, "--exclude-initial-overlaps: MuJoCo could not load the model (" + error +
+                      "), so no overlapping bodies were excluded");
+    return;
+  }
+  auto unprefixed = [&](const std::string& body) { return body.substr(options_.prefix.size()); };
+  auto declaration = [&](const std::string& body) {
+    for (const sn::FrameNode& n : view_.nodes)
+      if (n.kind == sn::FrameNode::Kind::Body && name(n.path) == body) return n.where;
+    return at_root;
+  };
+  Element* contact = root.child("contact");
+  std::set<std::pair<std::string, std::string>> excluded;
+  for (const InitialOverlap& o : overlaps) {
+    if (o.body1 == "world" || o.body2 == "world") continue;
+    if (!contact) contact = &root.add("contact");
+    contact->add("exclude").set("body1", o.body1).set("body2", o.body2);
+    excluded.insert({o.body1, o.body2});
+    sink_.report(fe::DiagCode::MjcfOverlapExcluded, declaration(o.body1),
+                 "contacts between `" + unprefixed(o.body1) + "` and `" + unprefixed(o.body2) +
+                     "` are excluded (--exclude-initial-overlaps): their collision geometry overlaps by " +
+                     length_text(o.depth) + " at the start");
+  }
+  if (excluded.empty() || !contact) return;
+  // <pair>s between excluded bodies go too: MuJoCo applies <exclude> to its own contact detection only.
+  std::map<std::string, std::string> geom_body;
+  std::vector<const Element*> stack{world_};
+  while (!stack.empty()) {
+    const Element* body = stack.back();
+    stack.pop_back();
+    const std::string* body_name = body->get("name");
+    for (const std::unique_ptr<Element>& e : body->children()) {
+      if (e->name() == "body") stack.push_back(e.get());
+      const std::string* geom_name = e->get("name");
+      if (e->name() == "geom" && geom_name) geom_body[*geom_name] = body_name ? *body_name : "world";
+    }
+  }
+  auto& kids = contact->children();
+  kids.erase(std::remove_if(kids.begin(), kids.end(),
+                            [&](const std::unique_ptr<Element>& e) {
+                              if (e->name() != "pair") return false;
+                              const auto b1 = geom_body.find(*e->get("geom1"));
+                              const auto b2 = geom_body.find(*e->get("geom2"));
+                              if (b1 == geom_body.end() || b2 == geom_body.end()) return false;
+                              return excluded.count(std::minmax(b1->second, b2->second)) > 0;
+                            }),
+             kids.end());
 }
 
 // The MuJoCo bodies holding the shapes of a Simulation.CollisionGroup.

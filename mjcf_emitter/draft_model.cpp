@@ -24,7 +24,12 @@ DraftModel::DraftModel(const Element& document, const std::string& dir) {
   if (!mj_) return;
   std::ofstream(file) << text;
   char error[1000] = "";
-  m_ = mj_->loadXML(file.c_str(), nullptr, error, sizeof(error));
+  {
+    MuJoCoMessages messages(*mj_);
+    m_ = mj_->loadXML(file.c_str(), nullptr, error, sizeof(error));
+    warnings_ = std::move(messages.warnings);
+  }
+  if (m_ && error[0]) warnings_.emplace_back(error);  // a warning the compiler kept
   std::error_code ec;
   fs::remove(file, ec);
   if (!m_) error_ = error;

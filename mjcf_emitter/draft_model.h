@@ -25,6 +25,8 @@ class DraftModel {
   const mjModel* model() const { return m_; }
   int body_id(const std::string& name) const { return mj_->name2id(m_, mjOBJ_BODY, name.c_str()); }
   const std::string& error() const { return error_; }  // why it did not load
+  // What MuJoCo said while compiling it (kept, never written to MUJOCO_LOG.TXT).
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   // Writes <inertial pos quat mass diaginertia> with the draft's mass properties into each body element
   // (found by its name attribute).
@@ -34,6 +36,7 @@ class DraftModel {
   const MuJoCoLibrary* mj_ = nullptr;  // loaded by the first draft
   mjModel* m_ = nullptr;
   std::string error_;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace openplx::mjcf

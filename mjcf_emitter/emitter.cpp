@@ -53,6 +53,7 @@ Emitted Lowering::run() {
     out.manifest_json = manifest_json(options_.model_name, options_.prefix, out.signals, out.laws);
   stiffen_equalities(root);
   finish_with_draft(root);
+  exclude_initial_overlaps(root);
   return out;
 }
 

@@ -34,6 +34,9 @@ struct EmitOptions {
   // Emitted::manifest_json filled in; the converter leaves it empty and writes the manifest to its file in
   // pieces from `signals` and `laws` (write_manifest_json), never holding the whole text.
   bool manifest_text = true;
+  // --exclude-initial-overlaps: an <exclude> for every pair of bodies whose collision geometry overlaps at
+  // the initial state, found by compiling and forwarding a draft of the document in MuJoCo (a note for each).
+  bool exclude_initial_overlaps = false;
 };
 
 struct Emitted {

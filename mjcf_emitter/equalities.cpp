@@ -160,6 +160,11 @@ void Lowering::finish_with_draft(Element& root) {
   for (const auto& [node, mass] : mass_on_geoms_) mesh_bodies.push_back(body_element_.at(node));
   if ((soft_equalities_.empty() && mesh_bodies.empty()) || sink_.has_errors()) return;
   const DraftModel draft(root, options_.output_dir);
+  for (const std::string& text : draft.warnings()) {  // MuJoCo's own words, at the root model
+    sink_.report(fe::DiagCode::MuJoCoWarning,
+                 view_.root >= 0 ? view_.nodes[view_.root].where : fe::SourceRange{},
+                 "MuJoCo warns while compiling the draft model: " + text);
+  }
   if (!draft.model()) {
     warn({}, "the draft model did not load in MuJoCo (" + draft.error() +
                  "); mesh bodies keep MuJoCo's own mass computation and flexible loop closures its default "

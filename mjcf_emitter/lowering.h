@@ -152,6 +152,7 @@ class Lowering {
   // --------------------------------------------------------------------------------- contacts.cpp
   void emit_contact_pairs(Element& root);
   void emit_collision_filters(Element& root);
+  void exclude_initial_overlaps(Element& root);
   std::set<std::string> group_bodies(const sn::CollisionGroup& group, std::vector<std::string>& widened);
   std::string mujoco_body(int n);
 

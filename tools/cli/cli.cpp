@@ -66,8 +66,9 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
   return true;
 }
 
-// Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
-// --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did.
+// --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did, start with no
+// collision geometry overlapping, and run for --check-time seconds from its initial state without MuJoCo
+// finding it unstable. Findings land at the joint's or body's declaration, else at the root model's.
 void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOptions& emit_options,
            const snap::ResolvedSystem& view, const snap::SnapResult& assembled,
            const fe::Evaluation& evaluation, fe::DiagnosticSink& sink) {
@@ -80,27 +81,41 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   const fs::path file =
       dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".xml");
   const fe::SourceFile& source = evaluation.program->sources().file(evaluation.document->doc.file);
-  const fe::SourceRange at_file{evaluation.document->doc.file, source.content_begin(),
-                                source.content_begin()};
+  fe::SourceRange at_root{evaluation.document->doc.file, source.content_begin(), source.content_begin()};
+  if (view.root >= 0 && view.nodes[static_cast<size_t>(view.root)].where.file != fe::kNoFile)
+    at_root = view.nodes[static_cast<size_t>(view.root)].where;
+  auto at = [&](const fe::SourceRange& where) { return where.file != fe::kNoFile ? where : at_root; };
   std::string error;
   if (!write_file_atomically(file.string(), xml, error)) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_file,
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_root,
                 "--check cannot write " + file.string() + ": " + error);
     return;
   }
-  mjcf::CheckResult result =
-      mjcf::check_mjcf(file.string(), view, assembled, options.prefix, evaluation.evaluator->root_name());
+  mjcf::CheckOptions check_options;
+  check_options.simulate_time = options.check_time;
+  check_options.emitted_timestep = options.timestep;
+  mjcf::CheckResult result = mjcf::check_mjcf(file.string(), view, assembled, options.prefix,
+                                              evaluation.evaluator->root_name(), check_options);
   std::error_code ec;
   fs::remove(file, ec);
   if (!result.loaded) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_file,
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_root,
                 "MuJoCo rejects the emitted MJCF: " + result.load_error);
     return;
   }
   for (const std::string& problem : result.problems) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_file, "--check: " + problem);
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_root, "--check: " + problem);
   }
+  for (const mjcf::LocatedProblem& p : result.mujoco_warnings)
+    sink.report(fe::DiagCode::MuJoCoWarning, at(p.where), p.message);
+  for (const mjcf::LocatedProblem& p : result.overlap_reports)
+    sink.report(fe::DiagCode::MjcfInitialOverlap, at(p.where), p.message);
+  for (const mjcf::LocatedProblem& p : result.instabilities)
+    sink.report(fe::DiagCode::MjcfUnstable, at(p.where), p.message);
 }
+
+// --check-time's bound: a check is for catching a model that blows up, not for running it.
+constexpr double kMaxCheckTime = 100;
 
 constexpr uintmax_t kHugePageInputBytes = 32 << 10;
 bool ending_after_run = false;  // end_process_after_run(): the process exits as soon as run() returns
@@ -148,6 +163,7 @@ bool write_manifest(const Converted& converted, const std::string& path, std::st
       error);
 }
 
+// Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
 bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
               std::ostream& text, Converted& converted, std::ostream& err) {
   PassTimer timer;
@@ -196,6 +212,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.keyframe = options.keyframe;
   emit_options.manifest_text = false;  // written to its file in pieces (write_manifest)
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
+  emit_options.exclude_initial_overlaps = options.exclude_initial_overlaps;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
@@ -227,8 +244,11 @@ std::string manifest_path(const std::string& output) {
 }
 
 std::string usage() {
-  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--prefix P] "
-         "[--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--no-default-bundles]\n"
+  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--check-time "
+         "T] "
+         "[--prefix P]\n"
+         "                    [--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--no-default-bundles]\n"
+         "                    [--exclude-initial-overlaps]\n"
          "                    [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
@@ -240,7 +260,12 @@ std::string usage() {
          "  -o OUT         write the output to OUT ('-' for stdout, the default)\n"
          "  -B DIR         an extra bundle directory (repeatable)\n"
          "  --strict       treat warnings as errors\n"
-         "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose\n"
+         "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose, list\n"
+         "                 collision geometry that overlaps at the start, then simulate the model from its\n"
+         "                 initial state and report where MuJoCo finds it unstable (an error)\n"
+         "  --check-time T how long --check simulates, in seconds (default 1; at most 100)\n"
+         "  --exclude-initial-overlaps  exclude contacts between bodies whose collision geometry overlaps\n"
+         "                 at the start (<contact><exclude>), for parts meant to overlap\n"
          "  --prefix P     prepend P to every MuJoCo name\n"
          "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
          "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
@@ -298,6 +323,22 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (arg == "--check") {
       options.check = true;
+      continue;
+    }
+    if (arg == "--exclude-initial-overlaps") {
+      options.exclude_initial_overlaps = true;
+      continue;
+    }
+    if (!take_value(args, i, "--check-time", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      char* end = nullptr;
+      options.check_time = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !(options.check_time > 0) ||
+          !(options.check_time <= kMaxCheckTime)) {
+        error = "--check-time takes a positive number of seconds up to " +
+                std::to_string(int(kMaxCheckTime)) + ", not '" + value + "'";
+        return std::nullopt;
+      }
       continue;
     }
     if (!take_value(args, i, "--prefix", "", value, error, matched)) return std::nullopt;

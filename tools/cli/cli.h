@@ -1,7 +1,7 @@
 // The `openplx2mjcf` command line, callable in-process so tests run it under the sanitizers.
 //
-//   openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--dump=tokens|ast] [--help]
-//   [--version]
+//   openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check [--check-time T]]
+//   [--exclude-initial-overlaps] [--dump=tokens|ast|values|snap] [--help] [--version]
 //
 // Exit status: 0 success (warnings allowed), 1 input errors (diagnostics on `err`), 2 usage errors.
 #pragma once
@@ -21,12 +21,14 @@ struct CliOptions {
   std::optional<std::string> output;  // "-" is stdout
   std::vector<std::string> bundle_dirs;
   bool strict = false;
-  bool check = false;           // --check: load the MJCF in MuJoCo and compare with SNAP
-  std::string prefix;           // --prefix P: prepended to every MuJoCo name
-  double timestep = 0.002;      // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
-  bool mujoco3 = false;         // --mujoco 3: soft-weld laws of MuJoCo 3.x
-  bool keyframe = true;         // --no-keyframe: leave the initial keyframe out
-  bool default_bundles = true;  // --no-default-bundles: only -B and OPENPLX_BUNDLE_PATH bundles
+  bool check = false;                     // --check: load the MJCF in MuJoCo, compare with SNAP, simulate it
+  double check_time = 1.0;                // --check-time T: how long --check simulates, s
+  bool exclude_initial_overlaps = false;  // --exclude-initial-overlaps: <exclude> bodies overlapping at t = 0
+  std::string prefix;                     // --prefix P: prepended to every MuJoCo name
+  double timestep = 0.002;                // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
+  bool mujoco3 = false;                   // --mujoco 3: soft-weld laws of MuJoCo 3.x
+  bool keyframe = true;                   // --no-keyframe: leave the initial keyframe out
+  bool default_bundles = true;            // --no-default-bundles: only -B and OPENPLX_BUNDLE_PATH bundles
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;
