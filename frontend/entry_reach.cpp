@@ -28,7 +28,7 @@ const EntryReach::Node* EntryReach::root(const ModelInfo* type) {
     }
     node->targeted = true;
   };
-  for (const ModelInfo* model : type->linearization) {
+  for (const ModelInfo* model : type->linearization()) {
     for (const auto& [rel, unused] : model->by_parent) add(rel);
     for (const auto& [rel, unused] : model->children_below) add(rel);
     for (const auto& [rel, unused] : model->annotations_below) add(rel);

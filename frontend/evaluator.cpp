@@ -170,7 +170,7 @@ Evaluator::Targeting Evaluator::collect_targeting(const std::vector<Level>& leve
   Targeting t;
   for (uint32_t i = 0; i < levels.size(); ++i) {
     if (levels[i].left_out) continue;
-    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization) {
+    for (ModelInfo* model : graph_.at(levels[i].object).type->linearization()) {
       if (auto it = model->by_parent.find(levels[i].rel); it != model->by_parent.end()) {
         for (uint32_t index : it->second) {
           const Entry& e = model->entries[index];
@@ -262,7 +262,7 @@ const Entry* Evaluator::entry_below(ObjectId id, std::string_view slot) const {
   // Only on the error path: the first entry (not an annotation) on a part of `slot`, at any level.
   for (const Level& level : levels_of(id)) {
     const std::string key = join_key(level.rel, slot);
-    for (ModelInfo* model : graph_.at(level.object).type->linearization) {
+    for (ModelInfo* model : graph_.at(level.object).type->linearization()) {
       auto it = model->prefixes.find(key);
       if (it != model->prefixes.end() && model->entries[it->second].kind != Entry::Kind::Annotation) {
         return &model->entries[it->second];
@@ -300,7 +300,7 @@ bool Evaluator::assigns_only(const ModelInfo* type, const EntryReach::Node& node
 }
 
 bool Evaluator::assigns_only(const ModelInfo* type, const std::string& rel) const {
-  for (const ModelInfo* model : type->linearization) {
+  for (const ModelInfo* model : type->linearization()) {
     if (model->children_below.count(rel) || model->annotations_below.count(rel)) return false;
     auto it = model->by_parent.find(rel);
     if (it == model->by_parent.end()) continue;
@@ -444,7 +444,7 @@ bool Evaluator::overlay_assignments(ObjectId id, const std::vector<ObjectId>& ch
   // reports them.
   Object& obj = graph_.at(id);
   for (const auto& [level, node] : overlays) {
-    for (const ModelInfo* model : graph_.at(chain[level]).type->linearization) {
+    for (const ModelInfo* model : graph_.at(chain[level]).type->linearization()) {
       auto it = model->by_parent.find(node->rel);
       if (it == model->by_parent.end()) continue;
       for (uint32_t index : it->second) {
@@ -456,7 +456,7 @@ bool Evaluator::overlay_assignments(ObjectId id, const std::vector<ObjectId>& ch
   // model; an assignment beats a declaration's default.
   std::vector<bool> overlaid(obj.slots.size(), false);
   for (const auto& [level, node] : overlays) {
-    for (ModelInfo* model : graph_.at(chain[level]).type->linearization) {
+    for (ModelInfo* model : graph_.at(chain[level]).type->linearization()) {
       auto it = model->by_parent.find(node->rel);
       if (it == model->by_parent.end()) continue;
       for (uint32_t index : it->second) {
@@ -513,7 +513,7 @@ void Evaluator::build_slots_from(ObjectId id, const std::vector<Level>& levels) 
     obj.slots.emplace_back();
   };
   // Declaration order: the root-most base first, then traits, then the model itself...
-  const auto& lin = obj.type->linearization;
+  const auto& lin = obj.type->linearization();
   for (auto it = lin.rbegin(); it != lin.rend(); ++it) {
     auto found = (*it)->by_parent.find("");
     if (found == (*it)->by_parent.end()) continue;
@@ -1512,7 +1512,7 @@ Value Evaluator::apply_operator(char op, const std::vector<Value>& operands, Sou
 }
 
 const MethodInfo* Evaluator::find_method(ModelInfo* model, std::string_view name, ModelInfo** owner) {
-  for (ModelInfo* m : model->linearization) {
+  for (ModelInfo* m : model->linearization()) {
     for (const MethodInfo& method : m->methods) {
       if (method.member->path.parts[0].text == name) {
         *owner = m;
@@ -1566,7 +1566,7 @@ Value Evaluator::eval_call(const Expr& call, const Scope& scope) {
   const MethodInfo* method = find_method(type, name, &owner);
   if (!method) {
     std::vector<std::string> names;
-    for (ModelInfo* m : type->linearization) {
+    for (ModelInfo* m : type->linearization()) {
       for (const MethodInfo& mi : m->methods) names.emplace_back(mi.member->path.parts[0].text);
     }
     std::string message = "Unknown method " + std::string(name) + " in " + type->qualified;

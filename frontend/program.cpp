@@ -52,10 +52,47 @@ void list_folder(const std::string& dir, std::vector<std::string>& dirs, std::ve
   std::sort(others.begin(), others.end());
 }
 
+// The linearization of `model`: each model the first time it is met, depth first (a model, its traits in
+// order, then its base). This is the model followed by each trait's and then the base's own linearization
+// with what came before left out, without building theirs: each model's parents are looked at once.
+std::vector<ModelInfo*> linearize_model(const ModelInfo* model) {
+  std::vector<ModelInfo*> out;
+  if (model->linearize == ModelInfo::Linearize::No) return out;
+  std::unordered_set<const ModelInfo*> met;
+  std::vector<const ModelInfo*> stack{model};  // iterative: an inheritance chain can be 10,000 deep
+  std::vector<const ModelInfo*> parents;
+  while (!stack.empty()) {
+    const ModelInfo* m = stack.back();
+    stack.pop_back();
+    if (!met.insert(m).second) continue;  // met before: so were all of its parents
+    out.push_back(const_cast<ModelInfo*>(m));
+    const bool all = m->linearize == ModelInfo::Linearize::All;
+    auto taken = [&](const ModelInfo* p) {
+      return p && (all ? p->linearize != ModelInfo::Linearize::No : p->state == ModelInfo::State::Resolved);
+    };
+    parents.clear();
+    for (const ModelInfo* trait : m->traits) {
+      if (taken(trait)) parents.push_back(trait);
+    }
+    if (taken(m->base)) parents.push_back(m->base);
+    stack.insert(stack.end(), parents.rbegin(), parents.rend());
+  }
+  return out;
+}
+
 }  // namespace
+
+const std::vector<ModelInfo*>& ModelInfo::linearization() const {
+  if (!linearized_ && linearize != Linearize::No) {  // before resolve() gets that far: empty, for now
+    linearization_ = linearize_model(this);
+    linearized_ = true;
+  }
+  return linearization_;
+}
 
 bool ModelInfo::is_subtype_of(const ModelInfo* other) const {
   if (this == other) return true;
+  const std::vector<ModelInfo*>& linearization = this->linearization();
   if (std::find(linearization.begin(), linearization.end(), other) != linearization.end()) return true;
   // `Base with T1, T2` names no model of its own: any subtype of Base that includes T1 and T2 fits.
   if (!other->decl && other->base) {
@@ -591,10 +628,9 @@ ModelInfo* Program::loaded_model(std::string_view qualified) const {
 ModelInfo* Program::make_trait_extension(ModelInfo* base, std::vector<ModelInfo*> traits) {
   std::string name = base->qualified + " with ";
   for (size_t i = 0; i < traits.size(); ++i) name += (i ? ", " : "") + traits[i]->qualified;
-  for (ModelInfo& m : models_) {
-    if (!m.decl && m.qualified == name) return &m;
-  }
+  if (auto it = trait_extensions_.find(name); it != trait_extensions_.end()) return it->second;
   ModelInfo& model = models_.emplace_back();
+  trait_extensions_.emplace(name, &model);
   model.name = name;
   model.qualified = name;
   model.doc = base->doc;
@@ -602,16 +638,7 @@ ModelInfo* Program::make_trait_extension(ModelInfo* base, std::vector<ModelInfo*
   model.base = base;
   model.traits = std::move(traits);
   model.state = ModelInfo::State::Resolved;
-  model.linearization.push_back(&model);
-  auto add = [&](ModelInfo* m) {
-    for (ModelInfo* l : m->linearization) {
-      if (std::find(model.linearization.begin(), model.linearization.end(), l) == model.linearization.end()) {
-        model.linearization.push_back(l);
-      }
-    }
-  };
-  for (ModelInfo* t : model.traits) add(t);
-  add(base);
+  model.linearize = ModelInfo::Linearize::All;
   return &model;
 }
 
@@ -753,26 +780,15 @@ bool Program::resolve(ModelInfo* model) {
   flatten(model, decl.body, prefix);
   for (ModelInfo* trait : model->traits) ok = resolve(trait) && ok;
 
-  // Linearization: the model, its traits (each with its parent traits), then the base chain.
-  model->linearization = {model};
-  auto add_all = [&](ModelInfo* m) {
-    for (ModelInfo* l : m->linearization) {
-      if (std::find(model->linearization.begin(), model->linearization.end(), l) ==
-          model->linearization.end()) {
-        model->linearization.push_back(l);
-      }
-    }
-  };
-  for (ModelInfo* trait : model->traits) {
-    if (trait->state == ModelInfo::State::Resolved) add_all(trait);
-  }
-  if (model->base && model->base->state == ModelInfo::State::Resolved) add_all(model->base);
+  // Linearization: the model, its traits (each with its parent traits), then the base chain; built when
+  // first asked for, from the traits and base resolved by now.
+  model->linearize = ModelInfo::Linearize::Resolved;
 
   // Trait restrictions (spec §8): no shared ancestor between two traits of a model.
   for (size_t i = 0; i < model->traits.size(); ++i) {
     for (size_t j = i + 1; j < model->traits.size(); ++j) {
-      for (ModelInfo* a : model->traits[i]->linearization) {
-        const auto& other = model->traits[j]->linearization;
+      for (ModelInfo* a : model->traits[i]->linearization()) {
+        const auto& other = model->traits[j]->linearization();
         if (std::find(other.begin(), other.end(), a) != other.end()) {
           sink_.report(DiagCode::TraitRestriction, decl.name.range,
                        "Traits " + model->traits[i]->qualified + " and " + model->traits[j]->qualified +
@@ -807,21 +823,24 @@ bool Program::resolve(ModelInfo* model) {
       ok = false;
     }
   }
-  // Attribute names are unique across the base chain and traits. The inherited names first, so that a
-  // model declaring thousands of attributes compares each with them once.
-  std::unordered_set<std::string_view> inherited;
-  for (size_t k = 1; k < model->linearization.size(); ++k) {
-    auto it = model->linearization[k]->by_parent.find("");
-    if (it == model->linearization[k]->by_parent.end()) continue;
-    for (uint32_t index : it->second) {
-      const Entry& o = model->linearization[k]->entries[index];
-      if (o.kind == Entry::Kind::Declare) inherited.insert(o.path[0]);
+  // Attribute names are unique across the base chain and traits. Only a name some other model declares
+  // can clash, and only then are the ancestors listed (never kept: see linearization()).
+  std::vector<ModelInfo*> ancestors;
+  std::unordered_set<const ModelInfo*> ancestor_set;
+  auto inherited = [&](std::string_view name) {
+    auto found = declarers_.find(name);
+    if (found == declarers_.end()) return false;
+    if (ancestors.empty()) {
+      ancestors = linearize_model(model);
+      ancestor_set.insert(ancestors.begin() + 1, ancestors.end());
     }
-  }
+    return std::any_of(found->second.begin(), found->second.end(),
+                       [&](const ModelInfo* m) { return ancestor_set.count(m) > 0; });
+  };
   for (const Entry& e : model->entries) {
-    if (e.kind != Entry::Kind::Declare || e.path.size() != 1 || !inherited.count(e.path[0])) continue;
-    for (size_t k = 1; k < model->linearization.size(); ++k) {
-      ModelInfo* other = model->linearization[k];
+    if (e.kind != Entry::Kind::Declare || e.path.size() != 1 || !inherited(e.path[0])) continue;
+    for (size_t k = 1; k < ancestors.size(); ++k) {
+      ModelInfo* other = ancestors[k];
       auto it = other->by_parent.find("");
       if (it == other->by_parent.end()) continue;
       for (uint32_t index : it->second) {
@@ -837,6 +856,11 @@ bool Program::resolve(ModelInfo* model) {
         ok = false;
       }
     }
+  }
+  for (const Entry& e : model->entries) {
+    if (e.kind != Entry::Kind::Declare || e.path.size() != 1) continue;
+    std::vector<ModelInfo*>& declarers = declarers_[e.path[0]];
+    if (declarers.empty() || declarers.back() != model) declarers.push_back(model);
   }
   std::set<std::string_view> methods;
   for (const MethodInfo& method : model->methods) {

@@ -109,8 +109,13 @@ struct ModelInfo {
   enum class State : uint8_t { Unresolved, Resolving, Resolved, Failed } state = State::Unresolved;
   ModelInfo* base = nullptr;
   std::vector<ModelInfo*> traits;  // direct `with` traits
-  std::vector<ModelInfo*>
-      linearization;  // self, own traits (with their parents), then the base's, deduplicated
+  // Self, own traits (with their parents), then the base's, deduplicated. Built on first use and kept: a
+  // chain of 10,000 models each extending the previous holds the list of the models used, not one per
+  // model (quadratic time and memory).
+  const std::vector<ModelInfo*>& linearization() const;
+  // Which traits and base linearization() takes: none (resolve stopped before), those that resolved, or
+  // all (a `T with X` type).
+  enum class Linearize : uint8_t { No, Resolved, All } linearize = Linearize::No;
   std::vector<Entry> entries;
   std::unordered_map<std::string, std::vector<uint32_t>> by_parent;  // parent_key -> entries
   std::unordered_map<std::string, uint32_t> prefixes;  // every strict prefix of an entry path -> an entry
@@ -122,6 +127,10 @@ struct ModelInfo {
   std::map<std::string, ExprId, std::less<>> annotations;  // own model annotations
 
   bool is_subtype_of(const ModelInfo* other) const;  // reflexive; through bases and traits
+
+ private:
+  mutable std::vector<ModelInfo*> linearization_;
+  mutable bool linearized_ = false;
 };
 
 struct OperatorInfo {
@@ -208,6 +217,10 @@ class Program {
   std::deque<Namespace> namespaces_;
   std::deque<DocumentInfo> documents_;
   std::deque<ModelInfo> models_;
+  std::unordered_map<std::string, ModelInfo*> trait_extensions_;  // make_trait_extension's, by name
+  // Models by the attributes they declare at their top level: an attribute declared again below an
+  // ancestor is found without a walk over every ancestor of every model.
+  std::unordered_map<std::string_view, std::vector<ModelInfo*>> declarers_;
   std::deque<GlobalInfo> globals_;
   std::vector<OperatorInfo> operators_;
   // builtin_model's answers by name (natives make a Math.Vec3 for every vector they return).

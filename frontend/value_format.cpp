@@ -13,7 +13,7 @@ namespace {
 
 // Vectors and quaternions read best as one value; every other model instance is a subtree.
 bool is_inline_type(const ModelInfo* type) {
-  for (const ModelInfo* m : type->linearization) {
+  for (const ModelInfo* m : type->linearization()) {
     if (m->qualified == "Math.Vec2" || m->qualified == "Math.Vec3" || m->qualified == "Math.Quat")
       return true;
   }

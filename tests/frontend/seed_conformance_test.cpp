@@ -83,7 +83,7 @@ struct Declared {
 
 Declared declared_in(const fe::ModelInfo* model) {
   Declared out;
-  for (const fe::ModelInfo* m : model->linearization) {
+  for (const fe::ModelInfo* m : model->linearization()) {
     for (const fe::Entry& e : m->entries) {
       if (e.kind == fe::Entry::Kind::Declare && e.path.size() == 1) out.attributes.emplace(e.path[0]);
     }
