@@ -95,6 +95,8 @@ void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interacti
       if (const fe::ObjectId flexibility = in.object(id, "flexibility"); flexibility != fe::kNoObject)
         i.stiffness = stiffness(in, flexibility);
       i.rest = in.real(id, i.kind == K::LinearSpring ? "position" : "angle");
+      in.require(std::isfinite(i.rest), id, i.kind == K::LinearSpring ? "position" : "angle", i.rest,
+                 "a spring's rest position or angle is finite");
       i.damping = read_damping(in, in.object(id, "dissipation"));
       break;
     case K::LinearVelocityMotor:
@@ -102,10 +104,19 @@ void read_interaction_parameters(AttributeReader& in, fe::ObjectId id, Interacti
     case K::DistanceMotor:
       i.gain = in.number(id, "gain");
       i.target_speed = in.number(id, "target_speed");
+      if (i.gain)
+        in.require(std::isfinite(*i.gain) && *i.gain >= 0, id, "gain", *i.gain,
+                   "a gain is finite, 0 or more");
+      if (i.target_speed)
+        in.require(std::isfinite(*i.target_speed), id, "target_speed", *i.target_speed,
+                   "a target speed is finite");
       break;
     case K::ForceMotor:
     case K::TorqueMotor:
       i.default_effort = in.real(id, i.kind == K::ForceMotor ? "default_force" : "default_torque");
+      in.require(std::isfinite(i.default_effort), id,
+                 i.kind == K::ForceMotor ? "default_force" : "default_torque", i.default_effort,
+                 "a motor's default effort is finite");
       break;
     case K::Steering:  // its geometry is read with the suspensions it steers (read_steering)
       break;

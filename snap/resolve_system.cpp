@@ -488,16 +488,29 @@ class SystemBuilder {
       if (obj.type->is_subtype_of(model)) g.shape = shape;
     }
     if (std::optional<Transform> t = transform_of(id, std::string_view("local_transform"))) g.local = *t;
+    // A size is finite and 0 or more (0: the emitter leaves the geometry out, warned).
+    auto size = [&](std::string_view name) {
+      const double v = real(id, name);
+      in_.require(std::isfinite(v) && v >= 0, id, name, v, "a geometry's size is a finite number, 0 or more");
+      return v;
+    };
     switch (g.shape) {
       case Geometry::Shape::Box:
         g.size = vec3(id, "size");
+        if (!(g.size.allFinite() && g.size.minCoeff() >= 0)) {
+          const fe::ObjectId v = object(id, "size");
+          for (const char* axis : {"x", "y", "z"}) {
+            const double c = v == fe::kNoObject ? 0 : real(v, axis);
+            in_.require(std::isfinite(c) && c >= 0, v, axis, c, "a box's size is finite and 0 or more");
+          }
+        }
         break;
       case Geometry::Shape::Sphere:
-        g.size.x() = real(id, "radius");
+        g.size.x() = size("radius");
         break;
       case Geometry::Shape::Cylinder:
       case Geometry::Shape::Capsule:
-        g.size = {real(id, "radius"), real(id, "height"), 0.0};
+        g.size = {size("radius"), size("height"), 0.0};
         break;
       case Geometry::Shape::ConvexMesh:
       case Geometry::Shape::TriMesh:
@@ -744,7 +757,12 @@ class SystemBuilder {
   int material_index(fe::ObjectId id) {
     if (id == fe::kNoObject) return -1;
     auto [it, fresh] = material_of_.try_emplace(id, static_cast<int>(view_.materials.size()));
-    if (fresh) view_.materials.push_back({id, in_.real(id, "density", 1000.0), where_of(id)});
+    if (fresh) {
+      const double density = in_.real(id, "density", 1000.0);
+      in_.require(std::isfinite(density) && density >= 0, id, "density", density,
+                  "a density is a finite number of kg/m^3, 0 or more");
+      view_.materials.push_back({id, density, where_of(id)});
+    }
     return it->second;
   }
 
@@ -1051,6 +1069,13 @@ class SystemBuilder {
     const Eigen::Vector3d position = vec3(id, "position");
     const Eigen::Vector3d main_axis = vec3(id, "main_axis");
     const Eigen::Vector3d normal = vec3(id, "normal");
+    if (!(position.allFinite() && main_axis.allFinite() && normal.allFinite())) {
+      for (const char* name : {"position", "main_axis", "normal"}) {
+        if (const fe::ObjectId v = object(id, name); v != fe::kNoObject)
+          in_.require_finite_components(v, "a connector's position and axes are finite");
+      }
+      return Transform{};
+    }
     std::optional<Transform> frame = natives::affine_from_axes(main_axis, normal, position);
     if (!frame) {
       sink_.report(fe::DiagCode::InvalidConnector, where,
@@ -1078,6 +1103,8 @@ class SystemBuilder {
     auto real = [&](std::string_view name, double& out) {
       const fe::Value* v = ev_.value(id, name);
       if (v && v->is_number()) out = v->as_real();
+      in_.require(std::isfinite(out), id, name, out,
+                  "a mate's initial angle, position or distance is finite");
     };
     real("initial_angle", mate.initial_angle);
     real("initial_position", mate.initial_position);
@@ -1153,8 +1180,11 @@ class SystemBuilder {
       if (description != fe::kNoObject) {
         t.link_width = real(description, "width");
         t.link_height = real(description, "height");
-        if (const fe::ObjectId inertia = object(description, "inertia"); inertia != fe::kNoObject)
+        if (const fe::ObjectId inertia = object(description, "inertia"); inertia != fe::kNoObject) {
           t.link_mass = real(inertia, "mass");
+          in_.require(std::isfinite(t.link_mass) && t.link_mass >= 0, inertia, "mass", t.link_mass,
+                      "a mass is 0 (computed from the geometries) or a positive number of kg");
+        }
         fe::ObjectId material = links == fe::kNoObject ? fe::kNoObject : object(links, "material");
         if (const fe::ObjectId box = object(description, "contact_geometry");
             material == fe::kNoObject && box != fe::kNoObject)
@@ -1167,6 +1197,7 @@ class SystemBuilder {
         if (auto it = connector_of_.find(object(w, "center_connector")); it != connector_of_.end())
           wheel.connector = it->second;
         wheel.radius = real(w, "radius");
+        in_.require(std::isfinite(wheel.radius), w, "radius", wheel.radius, "a wheel's radius is finite");
         t.wheels.push_back(wheel);
       }
       if (auto it = node_of_.find(object(n.object, "chassis_body")); it != node_of_.end())

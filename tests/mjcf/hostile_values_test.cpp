@@ -134,6 +134,20 @@ TEST_F(Hostile, InfinitePositionAndZeroQuaternionAreErrors) {
                   5, "an initial velocity is finite");
 }
 
+TEST_F(Hostile, NegativeSizesDensitiesAndInfiniteConnectorsAreErrors) {
+  std::string negative = rod("1.0");
+  negative.replace(negative.find("{0.05, 0.05"), 5, "{-0.05");
+  expect_error_at(convert(negative), 4, 9, "`rod.geometry.size.x` is -0.05; a box's size is finite");
+  expect_error_at(convert("const Light is Physics.Geometries.Material:\n"
+                          "    density: -5.0\n" +
+                          rod("1.0", "    geometry.material: Light\n")),
+                  2, 5, "a density is a finite number");
+  expect_error_at(convert(rod("1.0",
+                              "    top is Physics3D.Interactions.MateConnector:\n"
+                              "        position: {0, 0, Math.INF}\n")),
+                  6, 9, "`rod.top.position.z` is inf; a connector's position and axes are finite");
+}
+
 // A hinged arm with a torsion spring whose stiffness line (line 14) is `stiffness`.
 std::string sprung_arm(const std::string& stiffness) {
   return "Scene is Physics3D.System:\n"
