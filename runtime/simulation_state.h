@@ -43,7 +43,7 @@ struct EffortSwitch {
   int bias = -1;  // a velocity motor's bias actuator
 };
 
-struct SimulationState : MessageSink {
+struct SimulationState final : MessageSink {
   mjModel* m = nullptr;
   mjData* d = nullptr;
   bool owns = true;         // deletes m and d (a Simulation's); a bridge on someone's model does not
