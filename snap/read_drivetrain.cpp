@@ -133,7 +133,10 @@ void read_drive_parameters(AttributeReader& in, fe::ObjectId id, DriveCoupling& 
       c.forward_gears = ratios(in, id, "forward_gears");
       c.reverse_gears = ratios(in, id, "reverse_gears");
       // Clamped into an int (2^31 would not fit); a gear the lists lack is warned by the emitter.
-      c.initial_gear = static_cast<int>(std::clamp(in.real(id, "initial_gear", 0.0), -1e9, 1e9));
+      {
+        const double gear = in.real(id, "initial_gear", 0.0);  // NaN would make the cast undefined
+        c.initial_gear = std::isnan(gear) ? 0 : static_cast<int>(std::clamp(gear, -1e9, 1e9));
+      }
       c.has_neutral_gear = in.boolean(id, "has_neutral_gear").value_or(true);
       read_compliance(in, id, c);
       break;

@@ -209,6 +209,19 @@ TEST_F(Hostile, DrivetrainNumbersOutOfRangeAreErrorsAtTheirLines) {
                        "a torque capacity is a finite number");
 }
 
+// A gear of 2^31 once overflowed an int: now it is a gear the lists lack, warned, and the gearbox starts in
+// neutral.
+TEST_F(Hostile, AnInitialGearBeyondIntIsWarnedAndNeutral) {
+  for (const char* gear : {"2147483648", "-2147483648", "9000000000000000000"}) {
+    const std::string capacity = "clutch.torque_capacity: 300";
+    const Converted c =
+        convert(machine_with(capacity, capacity + "\n    gear_box.initial_gear: " + gear).first);
+    EXPECT_EQ(c.status, 0) << c.errors;
+    EXPECT_NE(c.errors.find("selects no gear of its lists; it starts in neutral"), std::string::npos)
+        << c.errors;
+  }
+}
+
 // A tracked vehicle (the runtime's vehicle test) with `links` links per track and `tracks` tracks.
 std::string tank(const std::string& links, int tracks = 1) {
   std::string text =
