@@ -214,6 +214,7 @@ inline void runtime_input_one(const uint8_t* data, size_t size,
   expected_errors([&] {
     rt::SignalBridge bridge = rt::SignalBridge::attach(manifest.path(), run.m, run.d);
     const std::vector<rt::SignalInfo> inputs = bridge.inputs(), outputs = bridge.outputs();
+    if (inputs.empty() || outputs.empty()) return;
     bool keep_going = false;
     for (int op = 0; op < 64 && at < size; ++op) {
       switch (byte() % 4) {

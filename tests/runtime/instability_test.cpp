@@ -12,6 +12,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "mjcf_emitter/signal_binding.h"
 #include "openplx/runtime/simulation.h"
 #include "tests/support/scratch_dir.h"
 
@@ -177,6 +178,17 @@ TEST(HostileInputs, HugeGearsAreSignalErrors) {
   gear.set(1.0);
   sim.advance(0.05);
   EXPECT_EQ(sim.output("power.gear_box.gear_output").real(), 1.0);
+}
+
+// -INT_MIN does not fit an int: the gear was negated before it was compared (a crash in the emitter for
+// `initial_gear: -2147483648`).
+TEST(HostileInputs, GearboxRatioTakesEveryInt) {
+  const std::vector<double> forward = {3.5, 2.0}, reverse = {4.0};
+  for (int gear : {INT_MIN, INT_MIN + 1, INT_MAX, 3, -2})
+    EXPECT_FALSE(openplx::mjcf::gearbox_ratio(forward, reverse, true, gear).valid) << gear;
+  EXPECT_EQ(openplx::mjcf::gearbox_ratio(forward, reverse, true, -1).ratio, -4.0);
+  EXPECT_EQ(openplx::mjcf::gearbox_ratio(forward, reverse, true, 2).ratio, 2.0);
+  EXPECT_EQ(openplx::mjcf::gearbox_ratio(forward, reverse, true, 0).ratio, 0.0);
 }
 
 TEST(HostileInputs, AdvanceTakesOnlySaneSpans) {

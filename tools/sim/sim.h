@@ -1,4 +1,6 @@
-// `openplx-sim`, callable in-process for tests. Exit status: 0 success, 1 model or signal errors, 2 usage.
+// `openplx-sim`, callable in-process for tests. Exit status: 0 success, 1 model or signal errors or a run
+// MuJoCo had to reset (SimulationError, printed; no values printed then), 2 usage (also --time beyond 1e9
+// steps, --timestep outside [1e-6, 1] s).
 #pragma once
 
 #include <iosfwd>
