@@ -200,6 +200,10 @@ uint32_t crc32(const char* data, size_t size) {
 
 }  // namespace
 
+std::string vertices_problem(const std::vector<Eigen::Vector3d>& vertices) {
+  return solid_problem(Mesh{vertices, {}});
+}
+
 std::string mesh_file_problem(const std::string& path) {
   std::string bytes;
   if (!read_all(path, bytes)) return "it cannot be read";

@@ -88,6 +88,15 @@ std::string Lowering::vertex_mesh_asset(const sn::Geometry& g) {
              "; MuJoCo needs a solid mesh, so it was left out");
     return {};
   }
+  if (const std::string problem = vertices_problem(g.vertices); !problem.empty()) {
+    const std::string message = "`" + g.path + ".vertices` cannot be a MuJoCo mesh: " + problem;
+    if (g.visual) {
+      warn(g.where, message + "; this visual geometry was left out");
+    } else {
+      sink_.report(fe::DiagCode::MjcfBadAsset, g.where, message);
+    }
+    return {};
+  }
   if (g.shape == sn::Geometry::Shape::TriMesh && g.collides) {
     warn(g.where, "`" + g.path +
                       "` is a triangle mesh; MuJoCo 2.2.2 collides with its convex hull, so contacts "

@@ -423,6 +423,33 @@ TEST_F(Hostile, BrokenMeshFilesAreErrorsWhereTheyCollideAndWarningsWhereOnlySeen
   EXPECT_EQ(stl.errors, "");
 }
 
+TEST_F(Hostile, FlatVertexMeshesAreErrorsWhereTheyCollideAndWarningsWhereOnlySeen) {
+  const std::string flat = "[{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}]";
+  expect_error_at(convert("Scene is Physics3D.System:\n"
+                          "    body is Physics3D.Bodies.RigidBody:\n"
+                          "        inertia.mass: 1.0\n"
+                          "        hull is Physics3D.Geometries.ConvexMesh:\n"
+                          "            vertices: " +
+                          flat + "\n"),
+                  4, 9, "`body.hull.vertices` cannot be a MuJoCo mesh: its vertices lie on one plane",
+                  "mjcf-bad-asset");
+  const Converted seen = convert(
+      "Scene is Physics3D.System:\n"
+      "    body is Physics3D.Bodies.RigidBody:\n"
+      "        inertia.mass: 1.0\n"
+      "        look is Visuals.Geometries.ConvexMesh:\n"
+      "            vertices: " +
+      flat +
+      "\n"
+      "        shape is Physics3D.Geometries.Box:\n"
+      "            size: {0.1, 0.1, 0.1}\n");
+  EXPECT_EQ(seen.status, 0) << seen.errors;
+  EXPECT_NE(seen.errors.find("scene.openplx:4:9: warning: `body.look.vertices` cannot be a MuJoCo mesh"),
+            std::string::npos)
+      << seen.errors;
+  EXPECT_EQ(seen.xml.find("<mesh"), std::string::npos) << seen.xml;
+}
+
 TEST_F(Hostile, ATextureThatIsNoPngIsLeftOutWithAWarning) {
   write_bytes(dir_ / "fake.png", "GIF89a, not a PNG at all");
   const Converted c = convert(
