@@ -1,5 +1,7 @@
 #include "frontend/lexer.h"
 
+#include <algorithm>
+#include <optional>
 #include <string>
 
 namespace openplx::frontend {
@@ -19,6 +21,41 @@ bool is_line_end(char c) {
 }
 bool is_closing_bracket(char c) {
   return c == ')' || c == ']' || c == '}';
+}
+
+// Binary files are refused whole: a NUL byte where at least a tenth of the first 64 KiB is not UTF-8 text
+// (control characters other than layout, bytes no UTF-8 sequence holds). A stray NUL in a text file is an
+// invalid character like any other. Returns the offset of the first NUL of a file refused.
+std::optional<uint32_t> binary_file_at(std::string_view text, uint32_t begin) {
+  const size_t nul = text.find('\0', begin);
+  if (nul == std::string_view::npos) return std::nullopt;
+  const std::string_view sample = text.substr(begin, 64 * 1024);
+  size_t not_text = 0;
+  for (size_t i = 0; i < sample.size();) {
+    const auto u = static_cast<unsigned char>(sample[i]);
+    if (u < 0x80) {
+      not_text += (u < 0x20 && u != '\n' && u != '\r' && u != '\t' && u != '\f' && u != '\v') || u == 0x7f;
+      ++i;
+      continue;
+    }
+    // A UTF-8 lead byte and its continuation bytes, or one byte that is not text.
+    const size_t length = u >= 0xC2 && u <= 0xDF   ? 2
+                          : u >= 0xE0 && u <= 0xEF ? 3
+                          : u >= 0xF0 && u <= 0xF4 ? 4
+                                                   : 0;
+    size_t k = 1;
+    while (length && k < length && i + k < sample.size() &&
+           (static_cast<unsigned char>(sample[i + k]) & 0xC0) == 0x80)
+      ++k;
+    if (length && k == length) {
+      i += length;
+    } else {
+      ++not_text;
+      ++i;
+    }
+  }
+  if (not_text * 10 < sample.size()) return std::nullopt;
+  return static_cast<uint32_t>(nul);
 }
 
 TokenKind keyword_kind(std::string_view word) {
@@ -73,7 +110,8 @@ class Lexer {
   bool at_end() const { return pos_ >= text_.size(); }
   void emit(TokenKind kind, uint32_t begin, uint32_t end) { tokens_.push_back({kind, begin, end}); }
   void error(DiagCode code, uint32_t begin, uint32_t end, std::string message) {
-    sink_.report(code, {file_, begin, end}, std::move(message));
+    const Diagnostic& d = sink_.report(code, {file_, begin, end}, std::move(message));
+    if (d.severity == Severity::Error) stopped_ = ++errors_ >= kMaxErrorsPerFile;
   }
   bool last_is_layout() const {
     if (tokens_.empty()) return true;
@@ -136,11 +174,22 @@ class Lexer {
   std::vector<OpenBracket> brackets_;
   uint32_t line_indent_ = 0;
   bool at_line_start_ = true;
+  uint32_t errors_ = 0;
+  bool stopped_ = false;  // too many errors: the rest of the file is not read
 };
 
 std::vector<Token> Lexer::run() {
-  tokens_.reserve(text_.size() / 4 + 16);
-  while (!at_end()) {
+  if (const std::optional<uint32_t> nul = binary_file_at(text_, pos_)) {
+    error(DiagCode::InvalidCharacter, *nul, *nul + 1,
+          "this file is not text (a NUL byte here, and much of its start is not UTF-8 text); an OpenPLX "
+          "file is UTF-8 text, and none of this one was read");
+    emit(TokenKind::EndOfFile, *nul, *nul);
+    return std::move(tokens_);
+  }
+  // Enough for most files; a huge one grows the vector as it goes (a reservation for a 100 MB file of
+  // garbage that stops after a hundred errors would hold memory for nothing).
+  tokens_.reserve(std::min<size_t>(text_.size() / 4, 1 << 20) + 16);
+  while (!at_end() && !stopped_) {
     if (at_line_start_) {
       at_line_start_ = false;
       if (!start_line()) continue;
@@ -148,6 +197,13 @@ std::vector<Token> Lexer::run() {
     lex_token();
   }
   uint32_t end = static_cast<uint32_t>(text_.size());
+  if (stopped_) {
+    end = pos_;
+    sink_.report(DiagCode::TooManyErrors, {file_, end, end},
+                 "too many errors in this file: stopping after " + std::to_string(kMaxErrorsPerFile) +
+                     "; the rest of it was not read");
+    brackets_.clear();
+  }
   if (!brackets_.empty()) report_unclosed_bracket(end);
   if (!last_is_layout()) emit(TokenKind::Newline, end, end);
   while (indents_.size() > 1) {

@@ -23,9 +23,10 @@ class Parser {
 
  private:
   // ---- tokens
-  const Token& cur() const { return tokens_[pos_]; }
+  // After too many errors every token reads as the end of the file: each loop of the parser ends there.
+  const Token& cur() const { return stopped_ ? tokens_.back() : tokens_[pos_]; }
   const Token& peek_token(size_t ahead = 1) const {
-    return tokens_[std::min(pos_ + ahead, tokens_.size() - 1)];
+    return tokens_[stopped_ ? tokens_.size() - 1 : std::min(pos_ + ahead, tokens_.size() - 1)];
   }
   TokenKind kind() const { return cur().kind; }
   bool at(TokenKind k) const { return kind() == k; }
@@ -52,10 +53,15 @@ class Parser {
   // Reports once per line: after the first error the parser is in panic mode until it resynchronises,
   // and tokens the lexer already reported are not reported again.
   void error(DiagCode code, SourceRange range, std::string message) {
-    if (panic_) return;
+    if (panic_ || stopped_) return;
     panic_ = true;
     if (cur().kind == TokenKind::Error) return;  // a consequence of a lexical error already reported
-    sink_.report(code, range, std::move(message));
+    const Diagnostic& d = sink_.report(code, range, std::move(message));
+    if (d.severity != Severity::Error || ++errors_ < kMaxErrorsPerFile) return;
+    sink_.report(DiagCode::TooManyErrors, {file_id_, range.end, range.end},
+                 "too many errors in this file: stopping after " + std::to_string(kMaxErrorsPerFile) +
+                     "; the rest of it was not read");
+    stopped_ = true;
   }
   void error_here(std::string expected) {
     error(DiagCode::UnexpectedToken, here(), "expected " + expected + ", found " + describe(cur()));
@@ -183,6 +189,8 @@ class Parser {
   uint32_t last_end_ = 0;
   int depth_ = 0;
   bool panic_ = false;
+  uint32_t errors_ = 0;
+  bool stopped_ = false;  // too many errors: the rest of the file is not read
 };
 
 Document Parser::run() {
