@@ -417,9 +417,13 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
   }
   if (options.output && *options.output != "-") {
     std::error_code ec;
-    if (std::filesystem::equivalent(options.input, *options.output, ec)) {
-      error = "refusing to overwrite the input file '" + options.input + "'";
-      return std::nullopt;
+    // The manifest written beside the MJCF counts too: `x.signals.json -o x.xml` would replace
+    // x.signals.json.
+    for (const std::string& written : {*options.output, manifest_path(*options.output)}) {
+      if (std::filesystem::equivalent(options.input, written, ec)) {
+        error = "refusing to overwrite the input file '" + options.input + "' with '" + written + "'";
+        return std::nullopt;
+      }
     }
   }
   return options;
