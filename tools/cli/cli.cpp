@@ -24,6 +24,7 @@
 #include "frontend/value_format.h"
 #include "mjcf_emitter/check.h"
 #include "mjcf_emitter/emitter.h"
+#include "mjcf_emitter/model_fingerprint.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
@@ -150,6 +151,7 @@ struct Converted {
   std::string xml;
   std::string model_name;
   std::string prefix;
+  double timestep = 0;                   // the one the model was emitted for, recorded in the manifest
   std::optional<mjcf::Emitted> emitted;  // its signals and laws
 };
 
@@ -157,8 +159,12 @@ bool write_manifest(const Converted& converted, const std::string& path, std::st
   return write_file_atomically(
       path,
       [&](const PieceWriter& write) {
+        // The fingerprint lets a SignalBridge refuse a model this manifest was not written for.
+        const mjcf::ManifestModel model{
+            mjcf::model_fingerprint(converted.emitted->document, converted.prefix).text(),
+            converted.timestep};
         mjcf::write_manifest_json(converted.model_name, converted.prefix, converted.emitted->signals,
-                                  converted.emitted->laws, write);
+                                  converted.emitted->laws, model, write);
       },
       error);
 }
@@ -225,6 +231,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   converted.xml = std::move(xml);
   converted.model_name = emit_options.model_name;
   converted.prefix = emit_options.prefix;
+  converted.timestep = emit_options.timestep;
   converted.emitted = std::move(emitted);
   leave_to_exit(std::move(view));
   leave_to_exit(std::move(evaluation));
