@@ -79,6 +79,14 @@ void add_fingerprint(const fs::path& manifest, const std::string& model, const s
   write_json(manifest, j);
 }
 
+// A manifest as written before the fingerprint existed.
+void remove_fingerprint(const fs::path& manifest) {
+  json j = read_json(manifest);
+  j.erase("fingerprint");
+  j.erase("timestep");
+  write_json(manifest, j);
+}
+
 struct Compiled {
   mjModel* m = nullptr;
   mjData* d = nullptr;
@@ -152,7 +160,13 @@ TEST(BridgeMismatch, ManifestOfAnotherModelIsRefused) {
   emit(sample("cart_pole.openplx"), dir / "cart_pole.xml", "");
   Compiled cart_pole(dir / "cart_pole.xml");
   ASSERT_NE(cart_pole.m, nullptr);
+  // The converter writes the fingerprint the emitted document gives.
+  const json written = read_json(manifest_of(dir / "pendulum.xml"));
+  EXPECT_EQ(written.at("fingerprint").get<std::string>(),
+            mj::model_fingerprint(emitted(sample("pendulum.openplx"), "").document, "").text());
+  EXPECT_EQ(written.at("timestep").get<double>(), 0.002);
   // Without a fingerprint (manifests written before it): every element it names must be there.
+  remove_fingerprint(manifest_of(dir / "pendulum.xml"));
   std::string error = load_error(manifest_of(dir / "pendulum.xml"), cart_pole.m, cart_pole.d);
   EXPECT_NE(
       error.find("pendulum.signals.json: error: the model lacks 2 of the 3 MuJoCo elements this manifest "
