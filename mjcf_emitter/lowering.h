@@ -280,6 +280,7 @@ class Lowering {
   std::map<int, std::vector<std::string>> equalities_of_mate_;  // loop mate -> its equality names
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
+  std::map<std::string, int> ranges_on_joint_;                  // how many of those each joint has
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
   SignalClasses signal_classes_;                                // keyed by the view's type names
   std::map<int, std::string> distance_tendons_;                 // DistanceRange/Motor -> its tendon

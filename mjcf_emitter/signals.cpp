@@ -19,6 +19,8 @@ void identify(SignalBinding& b, const sn::Signal& s) {
 void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   sensors_ = &root.add("sensor");
   emit_lidars();
+  // Counted once: a count per enabled signal was quadratic in a robot's joints.
+  for (const auto& [interaction, joint] : range_joints_) ++ranges_on_joint_[joint];
   out.reserve(out.size() + view_.signals.size());
   for (const sn::Signal& s : view_.signals) {  // each binding made in place, never moved
     SignalBinding& b = out.emplace_back();
@@ -232,9 +234,7 @@ void Lowering::bind_enabled(SignalBinding& b, int k) {
     return;
   }
   if (auto r = range_joints_.find(k); r != range_joints_.end()) {
-    const auto shared = std::count_if(range_joints_.begin(), range_joints_.end(),
-                                      [&](const auto& other) { return other.second == r->second; });
-    if (shared > 1) {
+    if (ranges_on_joint_[r->second] > 1) {
       return unmapped(b, concat({"`", i.path, "` shares joint ", r->second,
                                  " with other ranges; MuJoCo has one limit per joint, so one range "
                                  "cannot be switched alone"}));
