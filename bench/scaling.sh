@@ -38,7 +38,7 @@ urdf() {
       parent = (b > 0 && (i - 1) % b == 0) ? 0 : i - 1
       printf "  <joint name=\"joint%d\" type=\"revolute\">\n", i
       printf "    <parent link=\"link%d\"/><child link=\"link%d\"/>\n", parent, i
-      printf "    <origin xyz=\"%s 0 0.1\"/><axis xyz=\"0 1 0\"/>\n", parent == 0 ? int((i - 1) / b) * 0.2 : 0
+      printf "    <origin xyz=\"%s 0 0.1\"/><axis xyz=\"0 1 0\"/>\n", (b > 0 && parent == 0) ? int((i - 1) / b) * 0.2 : 0
       print "    <limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"1\"/>"
       print "  </joint>"
     }
@@ -75,7 +75,7 @@ measure() {
   median=$(printf '%s\n' "${times[@]}" | sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }')
   local outcome="MJCF written"
   if ((status != 0)); then
-    outcome=$(grep -m1 -o 'error: .*' "$work/stderr" | cut -c1-90)
+    outcome=$(grep -a -m1 -o 'error: .*' "$work/stderr" | cut -c1-90)
   fi
   awk -v l="$label" -v s="$(du -k "$input" | cut -f1)" -v t="$median" -v m="$peak" -v o="$outcome" 'BEGIN {
     printf "| %s | %.1f MB | %.2f s | %.0f MB | %s |\n", l, s / 1024, t, m / 1024, o

@@ -37,11 +37,14 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
       select_root_model(*result.program, result.document, request.model ? &*request.model : nullptr);
   if (syntax_errors) return result;  // evaluating would only repeat them
   // Every declaration of the user's file is checked, used or not; bundles only as far as they are used.
-  for (const Decl& decl : result.document->doc.decls) {
-    if (decl.kind != DeclKind::Model && decl.kind != DeclKind::Trait) continue;
-    Symbol symbol = result.program->lookup_in(result.document->ns, decl.name.text);
-    if (symbol.model && symbol.model->decl == &decl) result.program->resolve(symbol.model);
-  }
+  // On the large stack: resolving a cycle of models recurses once per model in it.
+  run_with_large_stack([&] {
+    for (const Decl& decl : result.document->doc.decls) {
+      if (decl.kind != DeclKind::Model && decl.kind != DeclKind::Trait) continue;
+      Symbol symbol = result.program->lookup_in(result.document->ns, decl.name.text);
+      if (symbol.model && symbol.model->decl == &decl) result.program->resolve(symbol.model);
+    }
+  });
   if (!root_model) return result;
   result.evaluator = std::make_unique<Evaluator>(*result.program, sink);
   run_with_large_stack([&] {

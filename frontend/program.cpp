@@ -732,6 +732,22 @@ void Program::flatten(ModelInfo* model, const std::vector<Member>& members,
   }
 }
 
+// The unresolved models up a base chain are resolved farthest first, so that resolving a chain 100,000
+// deep (the last model written first) recurses one level, not 100,000 (a stack overflow). Only a chain that
+// ends (in a resolved model, an unknown name or no base): a cycle is left to resolve(), which reports it.
+void Program::resolve_bases_first(ModelInfo* model) {
+  std::vector<ModelInfo*> bases;
+  std::unordered_set<const ModelInfo*> seen{model};
+  for (const ModelInfo* m = model; m->decl && m->decl->base;) {
+    ModelInfo* base = resolve_model_name(m->doc, *m->decl->base, /*report=*/false);
+    if (!base || base->state != ModelInfo::State::Unresolved) break;
+    if (!seen.insert(base).second) return;  // a cycle
+    bases.push_back(base);
+    m = base;
+  }
+  for (auto it = bases.rbegin(); it != bases.rend(); ++it) resolve(*it);
+}
+
 bool Program::resolve(ModelInfo* model) {
   switch (model->state) {
     case ModelInfo::State::Resolved:
@@ -746,6 +762,7 @@ bool Program::resolve(ModelInfo* model) {
     case ModelInfo::State::Unresolved:
       break;
   }
+  resolve_bases_first(model);
   model->state = ModelInfo::State::Resolving;
   const Decl& decl = *model->decl;
   bool ok = true;

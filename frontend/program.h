@@ -206,6 +206,7 @@ class Program {
                                       SourceRange import_range);
   Namespace* new_namespace(std::string name, Namespace* parent, std::string dir, const BundleConfig* bundle);
   void flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix);
+  void resolve_bases_first(ModelInfo* model);
   bool bundle_visible(DocumentInfo* from, const BundleConfig* target) const;
   Namespace* bundle_root(std::string_view name);
 

@@ -90,6 +90,21 @@ TEST_F(DeepInheritance, LinearizationOfTraitDiamondsListsEachModelOnceInOrder) {
   EXPECT_EQ(value("s"), "5");
 }
 
+TEST_F(DeepInheritance, ChainWrittenLastModelFirstIsResolvedWithoutDeepRecursion) {
+  // Each model names a base declared after it: resolving the first one would recurse 20,000 levels.
+  const int n = 20000;
+  std::string text = "Scene is M" + std::to_string(n - 1) + "\n";
+  for (int k = n - 1; k > 0; --k) {
+    text += "M" + std::to_string(k) + " is M" + std::to_string(k - 1) + ":\n    a" + std::to_string(k) +
+            " is Real: " + std::to_string(k) + "\n";
+  }
+  text += "M0:\n    a0 is Real: 0\n";
+  ASSERT_TRUE(load(text, "Scene")) << all_diags();
+  EXPECT_EQ(value("a0"), "0.0");
+  EXPECT_EQ(value("a19999"), "19999.0");
+  EXPECT_EQ(root_type()->linearization().size(), static_cast<size_t>(n + 1));
+}
+
 TEST_F(DeepInheritance, CycleInALongChainIsReported) {
   std::string text = chain(200);
   text.replace(0, 2, "M0 is M199");  // `M0:` becomes `M0 is M199:`
