@@ -34,7 +34,11 @@ Emitted Lowering::run() {
   world_ = &world;
   emit_world_geoms(world);
   emit_terrains();
+  const size_t errors_before_bodies = sink_.error_count();
   emit_bodies(world);
+  // A body left out (a chain deeper than MuJoCo reads) leaves every later pass warning about elements whose
+  // bodies are missing: thousands of misleading lines after the one error that matters.
+  if (sink_.error_count() > errors_before_bodies) return out;
   emit_loop_closures(root);
   emit_tracks(root);
   emit_distance_mates(root);

@@ -85,6 +85,9 @@ TEST_F(UrdfScaling, ChainDeeperThanMujocoReadsIsALocatedError) {
             std::string::npos)
       << err.substr(0, 2000);
   EXPECT_NE(err.find("[mjcf-too-deep]"), std::string::npos);
+  // Nothing after it about the joints and ranges of the bodies left out: one error per body too deep.
+  EXPECT_EQ(occurrences(err, "warning:"), 0u) << err.substr(0, 2000);
+  EXPECT_EQ(occurrences(err, "error:"), occurrences(err, "[mjcf-too-deep]")) << err.substr(0, 2000);
 }
 
 TEST_F(UrdfScaling, UrdfOnOneLineIsTheSameRobot) {
