@@ -18,6 +18,7 @@
 #include "runtime/manifest_reader.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
+#include "tests/support/light_rod.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
@@ -111,23 +112,7 @@ std::string load_error(const fs::path& manifest, mjModel* m, mjData* d, const st
   return "";
 }
 
-const char* kLightRod =
-    "Rod is Physics3D.Bodies.RigidBody:\n"
-    "    inertia.mass: 0.001\n"
-    "    geometry is Physics3D.Geometries.Box:\n"
-    "        size: {0.05, 0.05, 1.0}\n"
-    "    top is Physics3D.Interactions.MateConnector:\n"
-    "        position.z: 0.5\n"
-    "        main_axis: Math.Vec3.Y_AXIS()\n"
-    "        normal: Math.Vec3.Z_AXIS()\n"
-    "Pendulum is Physics3D.System:\n"
-    "    pivot is Physics3D.Interactions.MateConnector:\n"
-    "        main_axis: Math.Vec3.Y_AXIS()\n"
-    "        normal: Math.Vec3.Z_AXIS()\n"
-    "    rod is Rod\n"
-    "    hinge is Physics3D.Interactions.Hinge:\n"
-    "        connectors: [rod.top, pivot]\n"
-    "        initial_angle: 0.3\n";
+const char* const kLightRod = openplx::testing::kLightRodPendulum;
 
 TEST(ModelFingerprint, TheDocumentsIsTheCompiledModels) {
   const ScratchDir dir;

@@ -14,6 +14,7 @@
 
 #include "mjcf_emitter/signal_binding.h"
 #include "openplx/runtime/simulation.h"
+#include "tests/support/light_rod.h"
 #include "tests/support/scratch_dir.h"
 
 namespace {
@@ -25,25 +26,8 @@ using openplx::testing::ScratchDir;
 
 // A very light rod on a hinge, driven by a torque motor: a torque of 1e8 N m gives it an angular
 // acceleration near 3e11 rad/s^2, beyond what MuJoCo 2.2.2 accepts (1e10): bad QACC on the first step.
-const char* kLightRod =
-    "Rod is Physics3D.Bodies.RigidBody:\n"
-    "    inertia.mass: 0.001\n"
-    "    geometry is Physics3D.Geometries.Box:\n"
-    "        size: {0.05, 0.05, 1.0}\n"
-    "    top is Physics3D.Interactions.MateConnector:\n"
-    "        position.z: 0.5\n"
-    "        main_axis: Math.Vec3.Y_AXIS()\n"
-    "        normal: Math.Vec3.Z_AXIS()\n"
-    "Pendulum is Physics3D.System:\n"
-    "    pivot is Physics3D.Interactions.MateConnector:\n"
-    "        main_axis: Math.Vec3.Y_AXIS()\n"
-    "        normal: Math.Vec3.Z_AXIS()\n"
-    "    rod is Rod\n"
-    "    hinge is Physics3D.Interactions.Hinge:\n"
-    "        connectors: [rod.top, pivot]\n"
-    "        initial_angle: 0.3\n"
-    "    motor is Physics3D.Interactions.TorqueMotor:\n"
-    "        connectors: [rod.top, pivot]\n";
+const std::string kLightRod =
+    std::string(openplx::testing::kLightRodPendulum) + openplx::testing::kLightRodMotor;
 
 std::string write(const ScratchDir& dir, const std::string& name, const std::string& text) {
   const fs::path path = dir / name;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/support/light_rod.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/sim/sim_options.h"
 
@@ -120,23 +121,7 @@ TEST(Sim, ValueSyntax) {
 TEST(Sim, DivergingModelExitsOneWithTheMessage) {
   const openplx::testing::ScratchDir scratch;
   const fs::path model = scratch / "light_rod.openplx";
-  std::ofstream(model) << "Rod is Physics3D.Bodies.RigidBody:\n"
-                          "    inertia.mass: 0.001\n"
-                          "    geometry is Physics3D.Geometries.Box:\n"
-                          "        size: {0.05, 0.05, 1.0}\n"
-                          "    top is Physics3D.Interactions.MateConnector:\n"
-                          "        position.z: 0.5\n"
-                          "        main_axis: Math.Vec3.Y_AXIS()\n"
-                          "        normal: Math.Vec3.Z_AXIS()\n"
-                          "Pendulum is Physics3D.System:\n"
-                          "    pivot is Physics3D.Interactions.MateConnector:\n"
-                          "        main_axis: Math.Vec3.Y_AXIS()\n"
-                          "        normal: Math.Vec3.Z_AXIS()\n"
-                          "    rod is Rod\n"
-                          "    hinge is Physics3D.Interactions.Hinge:\n"
-                          "        connectors: [rod.top, pivot]\n"
-                          "    motor is Physics3D.Interactions.TorqueMotor:\n"
-                          "        connectors: [rod.top, pivot]\n";
+  std::ofstream(model) << openplx::testing::kLightRodPendulum << openplx::testing::kLightRodMotor;
   const SimRun run = sim({model.string(), "--time", "1", "--at", "0.5", "motor.torque_input=1e8", "--print",
                           "hinge.angle_output"});
   EXPECT_EQ(run.status, 1);
