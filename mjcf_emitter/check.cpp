@@ -151,13 +151,6 @@ std::string overlap_report(const Locator& names, const InitialOverlap& o) {
          "Simulation.DisableCollisionPair); otherwise move them apart";
 }
 
-// The state MuJoCo saw when it warned: it warns before it resets mjData.
-struct Captured {
-  bool valid = false;
-  double time = 0;
-  std::vector<double> qpos, qvel, qacc, ctrl;
-};
-
 // Steps the model for `options.simulate_time` from `d`'s state, stopping at the first warning that means
 // the motion is no longer the model's.
 void simulate(const MuJoCoLibrary& mj, MuJoCoMessages& messages, const mjModel* m, mjData* d,
@@ -166,23 +159,15 @@ void simulate(const MuJoCoLibrary& mj, MuJoCoMessages& messages, const mjModel* 
   const double h = m->opt.timestep;
   const double wanted = std::ceil(options.simulate_time / h - 1e-9);
   const long steps = static_cast<long>(std::min<double>(wanted, kMaxCheckSteps));
-  Captured captured;
-  messages.on_warning = [&](const char*) {
-    if (captured.valid) return;  // the first of the step: the state before MuJoCo reset anything
-    captured.valid = true;
-    captured.time = d->time;
-    captured.qpos.assign(d->qpos, d->qpos + m->nq);
-    captured.qvel.assign(d->qvel, d->qvel + m->nv);
-    captured.qacc.assign(d->qacc, d->qacc + m->nv);
-    captured.ctrl.assign(d->ctrl, d->ctrl + m->nu);
-  };
+  WarnedState captured;
+  messages.on_warning = [&](const char*) { captured.capture(m, d); };
   const std::string during = "--check simulated the model from its initial state: ";
   std::set<int> noted;
   for (long step = 0; step < steps; ++step) {
     const WarningCounts before = WarningCounts::of(d);
     const double t = d->time;
     const size_t texts = messages.warnings.size();
-    captured.valid = false;
+    captured.clear();
     std::string error;
     if (!messages.call(
             d, [&] { mj.step(m, d); }, error)) {
@@ -198,16 +183,7 @@ void simulate(const MuJoCoLibrary& mj, MuJoCoMessages& messages, const mjModel* 
       if (severity == WarningSeverity::Ignore ||
           (severity == WarningSeverity::Note && !noted.insert(w).second))
         continue;
-      WarningFacts facts;
-      facts.warning = w;
-      facts.info = d->warning[w].lastinfo;
-      facts.time = captured.valid ? captured.time : t;
-      if (captured.valid) {
-        facts.qpos = captured.qpos.data();
-        facts.qvel = captured.qvel.data();
-        facts.qacc = captured.qacc.data();
-        facts.ctrl = captured.ctrl.data();
-      }
+      WarningFacts facts = captured.facts(d, w, t);
       facts.emitted_timestep = options.emitted_timestep;
       facts.prefix = prefix;
       LocatedProblem problem{during + describe_warning(m, facts), names.warning(w, facts.info)};

@@ -216,4 +216,28 @@ std::string describe_warning(const mjModel* m, const WarningFacts& f) {
   }
 }
 
+void WarnedState::capture(const mjModel* m, const mjData* d) {
+  if (valid) return;
+  valid = true;
+  time = d->time;
+  qpos.assign(d->qpos, d->qpos + m->nq);
+  qvel.assign(d->qvel, d->qvel + m->nv);
+  qacc.assign(d->qacc, d->qacc + m->nv);
+  ctrl.assign(d->ctrl, d->ctrl + m->nu);
+}
+
+WarningFacts WarnedState::facts(const mjData* d, int warning, double time_before) const {
+  WarningFacts facts;
+  facts.warning = warning;
+  facts.info = d->warning[warning].lastinfo;
+  facts.time = valid ? time : time_before;
+  if (valid) {
+    facts.qpos = qpos.data();
+    facts.qvel = qvel.data();
+    facts.qacc = qacc.data();
+    facts.ctrl = ctrl.data();
+  }
+  return facts;
+}
+
 }  // namespace openplx::mjcf

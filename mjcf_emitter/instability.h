@@ -68,6 +68,18 @@ struct WarningFacts {
   std::string_view prefix;      // stripped from MuJoCo names, leaving OpenPLX paths
 };
 
+// The state MuJoCo saw when it first warned during a step: it warns before mj_checkPos/Vel/Acc reset mjData,
+// so a warning callback keeps it for the description. clear() before each step.
+struct WarnedState {
+  bool valid = false;
+  double time = 0;
+  std::vector<double> qpos, qvel, qacc, ctrl;
+  void clear() { valid = false; }
+  void capture(const mjModel* m, const mjData* d);  // keeps only the first of a step
+  // `warning`'s facts as d counts it, with this state when one was captured, else at `time_before`.
+  WarningFacts facts(const mjData* d, int warning, double time_before) const;
+};
+
 // One paragraph, no trailing newline, e.g.
 //   "at t = 0.07 s MuJoCo found a NaN, infinite or huge acceleration (qacc) at DOF 12, the rotation of joint
 //    `car.front_left.hinge` in body `car.front_left` (qpos 1.2, qvel 8.1e9, qacc nan); MuJoCo reset the

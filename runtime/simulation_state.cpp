@@ -422,7 +422,7 @@ void SimulationState::step() {
 void SimulationState::begin_watch() {
   counts_before = mjcf::WarningCounts::of(d);
   time_before = d->time;
-  seen.any = false;
+  seen.clear();
   current_sink() = this;
 }
 
@@ -433,24 +433,17 @@ void SimulationState::end_watch() {
   for (int k = 0; k < mjNWARNING; ++k) risen |= d->warning[k].number != counts_before.number[k];
   if (risen) {
     check_warnings(back);
-  } else if (!seen.texts.empty()) {  // a message MuJoCo counts nowhere
-    for (const std::string& text : seen.texts) warn(source + ": warning: MuJoCo: " + text + "\n");
-    seen.texts.clear();
+  } else if (!seen_texts.empty()) {  // a message MuJoCo counts nowhere
+    for (const std::string& text : seen_texts) warn(source + ": warning: MuJoCo: " + text + "\n");
+    seen_texts.clear();
   }
 }
 
 // MuJoCo's warning callback runs before mj_checkPos/Vel/Acc reset the data: the state it saw is kept for the
 // message (only the first of a step; a warning is the rare path).
 void SimulationState::mujoco_warning(const char* text) {
-  if (!seen.any) {
-    seen.any = true;
-    seen.time = d->time;
-    seen.qpos.assign(d->qpos, d->qpos + m->nq);
-    seen.qvel.assign(d->qvel, d->qvel + m->nv);
-    seen.qacc.assign(d->qacc, d->qacc + m->nv);
-    seen.ctrl.assign(d->ctrl, d->ctrl + m->nu);
-  }
-  if (seen.texts.size() < 8) seen.texts.emplace_back(text);
+  seen.capture(m, d);
+  if (seen_texts.size() < 8) seen_texts.emplace_back(text);
 }
 
 void SimulationState::check_warnings(bool time_went_back) {
@@ -459,16 +452,7 @@ void SimulationState::check_warnings(bool time_went_back) {
   for (int w : counts_before.risen(d, time_went_back)) {
     const mjcf::WarningSeverity severity = mjcf::warning_severity(w);
     if (severity == mjcf::WarningSeverity::Ignore) continue;
-    mjcf::WarningFacts facts;
-    facts.warning = w;
-    facts.info = d->warning[w].lastinfo;
-    facts.time = seen.any ? seen.time : time_before;
-    if (seen.any) {
-      facts.qpos = seen.qpos.data();
-      facts.qvel = seen.qvel.data();
-      facts.qacc = seen.qacc.data();
-      facts.ctrl = seen.ctrl.data();
-    }
+    mjcf::WarningFacts facts = seen.facts(d, w, time_before);
     facts.emitted_timestep = emitted_timestep;
     facts.prefix = prefix;
     const std::string text = mjcf::describe_warning(m, facts);
@@ -480,9 +464,9 @@ void SimulationState::check_warnings(bool time_went_back) {
       warn(source + ": warning: " + text + "\n");
     }
   }
-  const double when = seen.any ? seen.time : time_before;
-  seen.any = false;
-  seen.texts.clear();
+  const double when = seen.valid ? seen.time : time_before;
+  seen.clear();
+  seen_texts.clear();
   if (!wrong.empty()) {
     throw SimulationError(wrong + "\n", when, first);
   }
@@ -490,8 +474,8 @@ void SimulationState::check_warnings(bool time_went_back) {
 
 void SimulationState::mujoco_failed(const std::string& error) {
   if (current_sink() == this) current_sink() = nullptr;
-  seen.any = false;
-  seen.texts.clear();
+  seen.clear();
+  seen_texts.clear();
   throw SimulationError(source + ": error: at t = " + std::to_string(time_before) +
                             " s MuJoCo stopped on an error: " + error + "\n",
                         time_before, -1);

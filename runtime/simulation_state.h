@@ -62,12 +62,8 @@ struct SimulationState final : MessageSink {
   // warning callback saw (the state before MuJoCo's reset).
   mjcf::WarningCounts counts_before;
   double time_before = 0;
-  struct Seen {
-    bool any = false;
-    double time = 0;
-    std::vector<double> qpos, qvel, qacc, ctrl;
-    std::vector<std::string> texts;
-  } seen;
+  mjcf::WarnedState seen;
+  std::vector<std::string> seen_texts;  // MuJoCo's own texts of the step's warnings (the first 8)
   std::vector<ResolvedSignal> signals;
   std::unordered_map<std::string, int> by_name;   // path -> index into signals
   std::vector<Eigen::Vector3d> kinematic_linear;  // per mocap body: world velocities the inputs set
