@@ -1,10 +1,12 @@
 #include "openplx/runtime/signal_bridge.h"
 
+#include <cmath>
 #include <mutex>
 #include <set>
 #include <utility>
 
 #include "mjcf_emitter/model_fingerprint.h"
+#include "mjcf_emitter/xml.h"
 #include "runtime/manifest_reader.h"
 #include "runtime/mujoco_messages.h"
 #include "runtime/simulation_state.h"
@@ -157,6 +159,15 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
   state->source = manifest;
   state->prefix = used_prefix;
   state->emitted_timestep = read.timestep;
+  // An included file's <option> is the scene's only when the scene sets none: a scene stepping at another
+  // time step runs the emitter's stability caps (velocity-motor gains, soft constraints) outside their range.
+  if (read.timestep > 0 && std::abs(model->opt.timestep - read.timestep) > 1e-9 * read.timestep) {
+    state->warn(manifest + ": warning: the scene steps at " + mjcf::number(model->opt.timestep) +
+                " s but the model was emitted for " + mjcf::number(read.timestep) +
+                " s; its motor gains and soft constraints follow the time step it was emitted for: emit it "
+                "with --timestep " +
+                mjcf::number(model->opt.timestep) + "\n");
+  }
   state->resolve(std::move(read.signals), read.laws);
   if (!state->mismatches.empty()) {
     throw LoadError(manifest + ": error: the manifest does not fit the model: " + list(state->mismatches, 5) +

@@ -404,12 +404,18 @@ TEST(BridgeInstability, SceneAtAnotherTimeStepIsNamedInTheHint) {
                                           "        connectors: [rod.top, pivot]\n"
                                           "        flexibility.stiffness: 1e9\n";
   emit((dir / "stiff.openplx").string(), dir / "stiff.xml", "");
-  add_fingerprint(manifest_of(dir / "stiff.xml"), (dir / "stiff.openplx").string(), "");
   Compiled model(dir / "stiff.xml");
   ASSERT_NE(model.m, nullptr);
   model.m->opt.timestep = 0.05;
   rt::SignalBridge bridge =
       rt::SignalBridge::attach(manifest_of(dir / "stiff.xml").string(), model.m, model.d);
+  // Said at attach, before anything has gone wrong.
+  ASSERT_EQ(bridge.warnings().size(), 1u);
+  EXPECT_NE(
+      bridge.warnings()[0].find("stiff.signals.json: warning: the scene steps at 0.05 s but the model was "
+                                "emitted for 0.002 s"),
+      std::string::npos)
+      << bridge.warnings()[0];
   std::string what;
   for (int k = 0; k < 200 && what.empty(); ++k) {
     bridge.before_step();
