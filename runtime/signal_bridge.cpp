@@ -159,8 +159,8 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
   state->source = manifest;
   state->prefix = used_prefix;
   state->emitted_timestep = read.timestep;
-  // An included file's <option> is the scene's only when the scene sets none: a scene stepping at another
-  // time step runs the emitter's stability caps (velocity-motor gains, soft constraints) outside their range.
+  // A scene stepping at another time step (its own <option>, or one read after the included file's) runs the
+  // emitter's stability caps (velocity-motor gains, soft constraints) outside the range they were set for.
   if (read.timestep > 0 && std::abs(model->opt.timestep - read.timestep) > 1e-9 * read.timestep) {
     state->warn(manifest + ": warning: the scene steps at " + mjcf::number(model->opt.timestep) +
                 " s but the model was emitted for " + mjcf::number(read.timestep) +
