@@ -8,21 +8,14 @@
 #include <string>
 
 #include "frontend/lexer.h"
+#include "tests/support/lcg_bytes.h"
 #include "tests/support/parse_fixture.h"
 
 namespace {
 
 namespace fe = openplx::frontend;
 
-// Bytes from a fixed 64-bit LCG (Knuth's MMIX constants), the top byte of each state.
-std::string lcg_bytes(uint64_t seed, size_t size) {
-  std::string out(size, '\0');
-  for (char& c : out) {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    c = static_cast<char>(seed >> 56);
-  }
-  return out;
-}
+using openplx::testing::lcg_bytes;
 
 class HugeInput : public openplx::testing::ParseTest {};
 

@@ -13,6 +13,7 @@
 #include "frontend/diagnostics.h"
 #include "frontend/lexer.h"
 #include "frontend/parser.h"
+#include "tests/support/lcg_bytes.h"
 #include "tests/support/parse_fixture.h"
 
 namespace fe = openplx::frontend;
@@ -69,15 +70,7 @@ class Robustness : public openplx::testing::ParseTest {
 
 using Names = std::vector<std::string>;
 
-// A fixed 64-bit LCG (Knuth's MMIX constants); the top byte of each state is one byte of output.
-std::string lcg_bytes(uint64_t seed, size_t size) {
-  std::string out(size, '\0');
-  for (char& c : out) {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    c = static_cast<char>(seed >> 56);
-  }
-  return out;
-}
+using openplx::testing::lcg_bytes;
 
 // ---------------------------------------------------------------------------------------------------------
 // Empty and nearly empty files
