@@ -290,6 +290,7 @@ class Lowering {
     std::string left_joint;                // the left wheel's steering hinge (the output)
     double fit_error = 0;                  // rad: the linkage's quartic fit, over the steering range
     std::vector<double> input_polynomial;  // the left wheel's angle for the input (empty: the input itself)
+    double low = 0, high = 0;              // rad: the inputs the linkage reaches (the input is clamped there)
   };
   std::map<int, SteeringElements> steering_;               // Steering interaction -> its MuJoCo elements
   std::map<int, std::vector<std::string>> lidar_sensors_;  // lidar -> its rangefinders, ray order

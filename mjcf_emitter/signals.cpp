@@ -180,6 +180,8 @@ void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) 
   if (auto steering = steering_.find(k); steering != steering_.end() && stem == "Angle") {
     // The left wheel's steering angle, held by the angle equality, or the input through its polynomial.
     b.initial_vector = steering->second.input_polynomial;
+    b.low = steering->second.low;  // the linkage's reach, to which the runtime clamps the input
+    b.high = steering->second.high;
     if (b.input) {
       return mapped(b, Quantity::EqualityTarget, MjObject::Equality, steering->second.angle_equality);
     }

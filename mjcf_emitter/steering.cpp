@@ -1,11 +1,13 @@
 // Lowering pass, kinematic steering (Vehicles.Steering.Kinematic): the left wheel's steering hinge is held by
 // a joint equality on it alone (`.angle`), whose constant the runtime sets from the steering input, and the
 // right wheel follows the linkage by a joint equality right = q(left) (`.linkage`), q the quartic MuJoCo's
-// joint equality takes, fitted to the exact linkage over the steering range (steering_linkage.h has the
-// geometry, UNCONFIRMED against AGX). Ackermann's input is the left wheel's angle itself; BellCrank's and
-// RackAndPinion's is the steering-wheel angle θ, and the left wheel is held at p(θ), a quartic fitted to
-// the exact linkage that the runtime evaluates (and inverts for the steering angle output).
+// joint equality takes, fitted to the exact linkage over every input it reaches (steering_linkage.h has
+// AGX's geometry, lengths relative to the track). Ackermann's input is the left wheel's angle itself;
+// BellCrank's and RackAndPinion's is the steering-wheel angle θ, and the left wheel is held at p(θ), a
+// polynomial fitted to the exact linkage that the runtime evaluates (and inverts for the steering angle
+// output). The input's range is the linkage's reach; the runtime clamps inputs to it.
 #include <Eigen/Dense>
+#include <algorithm>
 
 #include "mjcf_emitter/lowering.h"
 #include "mjcf_emitter/steering_linkage.h"
@@ -13,10 +15,38 @@
 namespace openplx::mjcf {
 namespace {
 
-std::string coefficients(const std::array<double, 5>& c) {
+std::string coefficients(const std::vector<double>& c) {
   std::string out;
   for (size_t p = 0; p < c.size(); ++p) out += (p ? " " : "") + number(c[p]);
   return out;
+}
+
+SteeringMechanism mechanism_of(const std::string& name) {
+  return name == "BellCrank"       ? SteeringMechanism::BellCrank
+         : name == "RackAndPinion" ? SteeringMechanism::RackAndPinion
+                                   : SteeringMechanism::Ackermann;
+}
+
+// The geometry as the user gave it: each attribute's value, lengths also in metres on this track.
+std::string parameters(const sn::Interaction1D& i, double track) {
+  std::string out = "track " + number(track) + " m, knuckle_length " + number(i.knuckle_length) + " (" +
+                    number(i.knuckle_length * track) + " m), knuckle_angle " + number(i.knuckle_angle) +
+                    " rad";
+  if (i.mechanism == "Ackermann") return out;
+  out += ", initial_angle_right_tie_rod " + number(i.tie_rod_angle) + " rad, steering_column_distance " +
+         number(i.column_distance) + " (" + number(i.column_distance * i.knuckle_length * track) + " m)";
+  if (i.mechanism == "RackAndPinion")
+    out += ", rack_length " + number(i.rack_length) + " (" + number(i.rack_length * track) + " m)";
+  return out + ", gear " + number(i.gear);
+}
+
+// The user's line of the first of `attributes` the user wrote, else the steering's own line.
+frontend::SourceRange line_of(const sn::Interaction1D& i, const std::vector<std::string>& attributes) {
+  for (const std::string& a : attributes) {
+    for (const auto& [name, where] : i.written)
+      if (name == a) return where;
+  }
+  return i.where;
 }
 
 }  // namespace
@@ -36,12 +66,13 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
                       "Steering) joined in MuJoCo's tree; it was left out");
     return;
   }
-  // Track width and the linkage geometry, in the plane across the steering axis.
+  // The track: between the two kingpins, the suspensions' chassis connectors.
   const sn::Mate& left = view_.mates[i.steered[0]];
   const sn::Mate& right = view_.mates[i.steered[1]];
   const Eigen::Vector3d kl = snap_.connector_world[left.connectors[0]].position;
   const Eigen::Vector3d kr = snap_.connector_world[right.connectors[0]].position;
   SteeringGeometry g;
+  g.mechanism = mechanism_of(i.mechanism);
   g.track = (kl - kr).norm();
   g.knuckle_length = i.knuckle_length;
   g.knuckle_angle = i.knuckle_angle;
@@ -49,39 +80,26 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
   g.column_distance = i.column_distance;
   g.rack_length = i.rack_length;
   g.gear = i.gear;
-  const bool column = i.mechanism == "BellCrank" || i.mechanism == "RackAndPinion";
-  const SteeringLinkage fit = i.mechanism == "BellCrank"       ? bell_crank_linkage(g)
-                              : i.mechanism == "RackAndPinion" ? rack_and_pinion_linkage(g)
-                                                               : ackermann_linkage(g);
-  const std::string geometry = "track " + number(g.track) + " m, knuckle " + number(i.knuckle_length) +
-                               " m at " + number(i.knuckle_angle) + " rad";
-  if (!fit.problem.empty()) {
-    warn(i.where, "`" + i.path + "`'s " + i.mechanism + " linkage (" + geometry + ") " + fit.problem +
-                      "; it was left out");
-    return;
-  }
-  if (!column && (fit.high - fit.low < 0.2 || fit.linkage.max_error > 1e-2)) {
-    warn(i.where, "`" + i.path + "`'s linkage (" + geometry + ") covers left angles " + number(fit.low) +
-                      " to " + number(fit.high) + " rad, and MuJoCo's quartic is off by up to " +
-                      number(fit.linkage.max_error) + " rad there; the right wheel follows that quartic");
-  }
-  if (column && (!fit.closes || fit.input_to_left.max_error > 1e-2 || fit.linkage.max_error > 1e-2)) {
-    double left_low = 0, left_high = 0;
-    for (const SteeringSample& s : fit.samples) {
-      left_low = std::min(left_low, s.left);
-      left_high = std::max(left_high, s.left);
-    }
-    std::string column_geometry = geometry + ", tie rods at " + number(i.tie_rod_angle) +
-                                  " rad, steering arm " + number(i.column_distance) + " m";
-    if (i.mechanism == "RackAndPinion") column_geometry += ", rack " + number(i.rack_length) + " m";
-    column_geometry += ", gear " + number(i.gear);
-    warn(i.where, "`" + i.path + "`'s " + i.mechanism + " linkage (" + column_geometry +
-                      ") covers steering inputs " + number(fit.low) + " to " + number(fit.high) +
-                      " rad (left wheel " + number(left_low) + " to " + number(left_high) + " rad)" +
-                      (fit.closes ? "" : ", short of the wheels' " + number(kSteeringRange) + " rad lock") +
-                      ", and MuJoCo's quartics are off by up to " + number(fit.input_to_left.max_error) +
-                      " rad (left wheel for the input) and " + number(fit.linkage.max_error) +
-                      " rad (right wheel for the left) there; the wheels follow those quartics");
+  SteeringLinkage fit = steering_linkage(g);
+  const bool closes = fit.problem.empty();
+  if (!closes) {
+    warn(line_of(i, fit.attributes), "`" + i.path + "`'s " + i.mechanism + " linkage (" +
+                                         parameters(i, g.track) + ") " + fit.problem +
+                                         "; its wheels are held straight ahead (the steering input is "
+                                         "clamped to 0)");
+    fit.low = fit.high = 0;
+    fit.input_to_left.c = {0.0};  // the left wheel at 0 whatever the input, and the right at 0 with it
+    fit.linkage.c = {0, 0, 0, 0, 0};
+  } else if (fit.input_to_left.max_error > 1e-2 || fit.linkage.max_error > 1e-2) {
+    std::string held = "MuJoCo's quartic holds the right wheel within " + number(fit.linkage_fitted) +
+                       " rad of the linkage for inputs " + number(fit.fitted_low) + " to " +
+                       number(fit.fitted_high) + " rad and within " + number(fit.linkage.max_error) +
+                       " rad beyond, where the linkage bends towards its dead points as no quartic does";
+    if (g.mechanism != SteeringMechanism::Ackermann)
+      held += "; the left wheel is held within " + number(fit.input_to_left.max_error) + " rad of its angle";
+    warn(i.where, "`" + i.path + "`'s " + i.mechanism + " linkage (" + parameters(i, g.track) +
+                      ") reaches steering inputs " + number(fit.low) + " to " + number(fit.high) +
+                      " rad (its dead points; inputs are clamped there); " + held);
   }
   Element* equality = root.child("equality");
   if (!equality) equality = &root.add("equality");
@@ -96,8 +114,8 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
       .set("joint2", *joints[0]->get("name"))
       .set("polycoef", coefficients(fit.linkage.c));
   SteeringElements& elements = steering_[index_in(view_.interactions, i)];
-  elements = {base + ".angle", *joints[0]->get("name"), fit.linkage.max_error, {}};
-  if (column) elements.input_polynomial.assign(fit.input_to_left.c.begin(), fit.input_to_left.c.end());
+  elements = {base + ".angle", *joints[0]->get("name"), fit.linkage.max_error, {}, fit.low, fit.high};
+  if (g.mechanism != SteeringMechanism::Ackermann || !closes) elements.input_polynomial = fit.input_to_left.c;
 }
 
 }  // namespace openplx::mjcf

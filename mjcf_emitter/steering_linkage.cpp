@@ -1,202 +1,316 @@
-// Kinematic steering linkages: exact loop closure and quartic fits (geometry in steering_linkage.h).
+// Kinematic steering linkages: closed-form loop closure, the reachable input range, polynomial fits
+// (geometry in steering_linkage.h).
 #include "mjcf_emitter/steering_linkage.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
-#include <optional>
-#include <utility>
 
 namespace openplx::mjcf {
 namespace {
 
 using Eigen::Vector2d;
 
-constexpr int kSteps = 120;  // samples per side of the range
-
-// The angle that turns `arm` (from kingpin `k`, of length `radius`) so that its end lies `tie` from
-// `anchor`, the solution nearest `near`; nullopt where the two circles do not meet.
-std::optional<double> arm_angle(const Vector2d& k, const Vector2d& arm, double radius, const Vector2d& anchor,
-                                double tie, double near) {
-  const Vector2d d = anchor - k;
-  const double dist = d.norm();
-  if (dist > radius + tie || dist < std::abs(radius - tie) || dist == 0) return std::nullopt;
-  const double a = (radius * radius - tie * tie + dist * dist) / (2 * dist);
-  const double h = std::sqrt(std::max(0.0, radius * radius - a * a));
-  const Vector2d mid = k + a * d / dist, across(-d.y() / dist, d.x() / dist);
-  std::optional<double> best;
-  for (const Vector2d& p : {Vector2d(mid + h * across), Vector2d(mid - h * across)}) {
-    const Vector2d r = p - k;
-    const double angle = std::atan2(arm.x() * r.y() - arm.y() * r.x(), arm.dot(r));
-    if (!best || std::abs(angle - near) < std::abs(*best - near)) best = angle;
-  }
-  return best;
+double angle_of(const Vector2d& v) {
+  return std::atan2(v.y(), v.x());
 }
 
-QuarticFit fit_quartic(const std::vector<std::pair<double, double>>& xy) {
-  // No constant term: straight ahead is straight ahead, so the equalities hold at the start.
-  Eigen::MatrixXd a(xy.size(), 4);
-  Eigen::VectorXd b(xy.size());
-  for (size_t s = 0; s < xy.size(); ++s) {
-    for (int p = 1; p < 5; ++p) a(static_cast<int>(s), p - 1) = std::pow(xy[s].first, p);
-    b(static_cast<int>(s)) = xy[s].second;
-  }
-  const Eigen::Vector4d c = a.colPivHouseholderQr().solve(b);
-  QuarticFit fit;
-  for (int p = 1; p < 5; ++p) fit.c[static_cast<size_t>(p)] = c(p - 1);
-  for (size_t s = 0; s < xy.size(); ++s)
-    fit.max_error = std::max(fit.max_error, std::abs((a.row(static_cast<int>(s)) * c)(0) - xy[s].second));
-  return fit;
-}
+// One loop: an arm `arm` (at rest) turning about kingpin `k`, whose end must lie `tie` from `anchor`. The arm
+// turned by δ has (R(δ) arm)·v = (|arm|² + |v|² - tie²) / 2 with v = anchor - k, so δ = angle(v) -
+// angle(arm) + side·acos(...): `side` (±1) is the side of v the arm lies on straight ahead, which it keeps
+// until arm and tie rod line up (a dead point, where the two circles touch and the loop stops closing).
+struct Loop {
+  Vector2d k, arm;
+  double tie = 0;
+  double side = 1;
 
-struct Knuckles {
-  Vector2d kl, kr, arm_l, arm_r;
+  std::optional<double> angle(const Vector2d& anchor) const {
+    const Vector2d v = anchor - k;
+    const double b = arm.norm(), d = v.norm();
+    if (!(d > 0)) return std::nullopt;
+    const double c = (b * b + d * d - tie * tie) / (2 * b * d);
+    if (!(std::abs(c) <= 1)) return std::nullopt;
+    return std::remainder(angle_of(v) - angle_of(arm) + side * std::acos(c), 2 * M_PI);
+  }
+  // The side straight ahead (0: the arm along the line to its anchor, a dead point at rest).
+  double side_at(const Vector2d& anchor) const {
+    const double a = std::remainder(angle_of(arm) - angle_of(anchor - k), 2 * M_PI);
+    return a > 0 ? 1.0 : a < 0 ? -1.0 : 0.0;
+  }
 };
 
-Knuckles knuckles(const SteeringGeometry& g) {
-  const double l = g.knuckle_length, beta = std::abs(g.knuckle_angle) - M_PI / 2;
-  return {Vector2d(0, g.track / 2), Vector2d(0, -g.track / 2),
-          Vector2d(-l * std::cos(beta), -l * std::sin(beta)),
-          Vector2d(-l * std::cos(beta), l * std::sin(beta))};
-}
+// The whole mechanism: both loops and where the tie rods' inner ends are for an input.
+struct Mechanism {
+  SteeringGeometry g;
+  Loop left, right;
+  double inner_x = 0, half_rack = 0, arm = 0;  // the inner ends at rest (x, ±y) and the steering arm s
 
-// The tie rods' inner ends for input θ (left, right), of a steering column mechanism.
-struct Column {
-  Knuckles k;
-  Vector2d inner_l, inner_r;  // at rest
-  double tie_l = 0, tie_r = 0;
-  bool lever = false;  // BellCrank: both ends on the lever's end; RackAndPinion: on the rack's
-  Vector2d pivot;      // BellCrank: the lever's pivot
-
-  std::pair<Vector2d, Vector2d> inner(const SteeringGeometry& g, double theta) const {
-    if (lever) {
-      const Vector2d end = pivot + Eigen::Rotation2Dd(g.gear * theta) * Vector2d(-g.column_distance, 0);
-      return {end, end};
+  // Inner ends (left, right) for input θ; nullopt past the rack's reach (tan at 90°).
+  std::optional<std::pair<Vector2d, Vector2d>> inner(double theta) const {
+    const double psi = g.gear * theta;
+    if (g.mechanism == SteeringMechanism::BellCrank) {
+      const Vector2d end(inner_x + arm - arm * std::cos(psi), -arm * std::sin(psi));
+      return std::make_pair(end, end);
     }
-    const Vector2d shift(0, -g.column_distance * g.gear * theta);
-    return {inner_l + shift, inner_r + shift};
+    if (!(std::abs(psi) < M_PI / 2)) return std::nullopt;
+    const double shift = -arm * std::tan(psi);
+    return std::make_pair(Vector2d(inner_x, half_rack + shift), Vector2d(inner_x, -half_rack + shift));
+  }
+
+  std::optional<std::pair<double, double>> angles(double input) const {
+    if (g.mechanism == SteeringMechanism::Ackermann) {
+      const Vector2d end_l = left.k + Eigen::Rotation2Dd(input) * left.arm;
+      const std::optional<double> r = right.angle(end_l);
+      if (!r) return std::nullopt;
+      return std::make_pair(input, *r);
+    }
+    const auto ends = inner(input);
+    if (!ends) return std::nullopt;
+    const std::optional<double> l = left.angle(ends->first), r = right.angle(ends->second);
+    if (!l || !r) return std::nullopt;
+    return std::make_pair(*l, *r);
   }
 };
 
-SteeringLinkage column_linkage(const SteeringGeometry& g, bool lever) {
-  SteeringLinkage out;
-  if (!(g.track > 0) || !(g.knuckle_length > 0)) {
-    out.problem = "needs a positive track and knuckle_length";
+// Builds the mechanism, or says why it cannot be built (problem and the attributes it is about).
+struct Built {
+  Mechanism m;
+  std::string problem;
+  std::vector<std::string> attributes;
+};
+
+Built build(const SteeringGeometry& g) {
+  Built out;
+  Mechanism& m = out.m;
+  m.g = g;
+  const double w = g.track, l = g.knuckle_length, phi = g.knuckle_angle;
+  auto fail = [&](std::string why, std::vector<std::string> attributes) {
+    out.problem = std::move(why);
+    out.attributes = std::move(attributes);
     return out;
-  }
-  if (!(std::cos(g.tie_rod_angle) > 1e-6)) {
-    out.problem = "has tie rods along the vehicle (initial_angle_right_tie_rod must be within ±90°)";
-    return out;
-  }
-  Column c;
-  c.k = knuckles(g);
-  c.lever = lever;
-  // Each tie rod runs inward from its arm end, sloping forward by the tie-rod angle, to the centre line
-  // (BellCrank) or to the rack's end (RackAndPinion).
-  const Vector2d arm_end_l = c.k.kl + c.k.arm_l, arm_end_r = c.k.kr + c.k.arm_r;
-  const double inner_y = lever ? 0.0 : g.rack_length / 2;
-  const double along = (arm_end_l.y() - inner_y) / std::cos(g.tie_rod_angle);
-  if (!(along > 1e-9)) {
-    out.problem = lever ? "has its knuckle arm ends across the centre line"
-                        : "has a rack reaching past the knuckle arm ends (rack_length too long)";
-    return out;
-  }
-  const double x = arm_end_l.x() + along * std::sin(g.tie_rod_angle);
-  c.inner_l = Vector2d(x, inner_y);
-  c.inner_r = Vector2d(x, -inner_y);
-  c.pivot = c.inner_l + Vector2d(g.column_distance, 0);
-  c.tie_l = (arm_end_l - c.inner_l).norm();
-  c.tie_r = (arm_end_r - c.inner_r).norm();
-  const double l = g.knuckle_length;
-  auto solve = [&](double theta, double near_l, double near_r) -> std::optional<std::pair<double, double>> {
-    const auto [il, ir] = c.inner(g, theta);
-    const std::optional<double> left = arm_angle(c.k.kl, c.k.arm_l, l, il, c.tie_l, near_l);
-    const std::optional<double> right = arm_angle(c.k.kr, c.k.arm_r, l, ir, c.tie_r, near_r);
-    if (!left || !right) return std::nullopt;
-    return std::make_pair(*left, *right);
   };
-  // The input's scale: how fast the left wheel turns straight ahead.
-  constexpr double kProbe = 1e-6;
-  const auto probe = solve(kProbe, 0, 0);
+  if (!(w > 0)) return fail("has its two kingpins (the suspensions' chassis connectors) at one place", {});
+  if (!(l > 0) || !std::isfinite(l)) return fail("needs a positive knuckle_length", {"knuckle_length"});
+  const double b = l * w;
+  m.left.k = Vector2d(0, w / 2);
+  m.right.k = Vector2d(0, -w / 2);
+  m.left.arm = b * Vector2d(std::sin(phi), std::cos(phi));
+  m.right.arm = b * Vector2d(std::sin(phi), -std::cos(phi));
+  const Vector2d end_l = m.left.k + m.left.arm, end_r = m.right.k + m.right.arm;
+  const bool column = g.mechanism != SteeringMechanism::Ackermann;
+  const double rack = g.mechanism == SteeringMechanism::RackAndPinion ? g.rack_length : 0.0;
+  // The inward room between the arm ends, less the rack: what the tie rods span across the axle line.
+  const double span = 1 + 2 * l * std::cos(phi) - rack;
+  if (!(span > 0)) {
+    std::vector<std::string> attributes = {"knuckle_length", "knuckle_angle"};
+    if (rack != 0) attributes.push_back("rack_length");
+    return fail(rack != 0 ? "has a rack reaching past its knuckle arms' ends (1 + 2 knuckle_length cos "
+                            "knuckle_angle - rack_length is " +
+                                std::to_string(span) + ", not positive)"
+                          : "has knuckle arms that reach across each other (1 + 2 knuckle_length cos "
+                            "knuckle_angle is " +
+                                std::to_string(span) + ", not positive)",
+                attributes);
+  }
+  if (!column) {
+    m.right.tie = (end_l - end_r).norm();
+  } else {
+    if (!(std::cos(g.tie_rod_angle) > 1e-6))
+      return fail("has tie rods along the vehicle (initial_angle_right_tie_rod must be within ±90°)",
+                  {"initial_angle_right_tie_rod"});
+    if (!(g.column_distance != 0 && std::isfinite(g.column_distance)) ||
+        !(g.gear != 0 && std::isfinite(g.gear)))
+      return fail("does not turn the wheels (steering_column_distance or gear is zero)",
+                  {"steering_column_distance", "gear"});
+    const double tie = span * w / (2 * std::cos(g.tie_rod_angle));
+    m.left.tie = m.right.tie = tie;
+    m.inner_x = end_l.x() + tie * std::sin(g.tie_rod_angle);
+    m.half_rack = rack * w / 2;
+    m.arm = g.column_distance * b;
+  }
+  const auto rest = m.inner(0);
+  const Vector2d anchor_l = column ? rest->first : end_r, anchor_r = column ? rest->second : end_l;
+  m.left.side = m.left.side_at(anchor_l);
+  m.right.side = m.right.side_at(anchor_r);
+  if ((column && m.left.side == 0) || m.right.side == 0)
+    return fail("has a knuckle arm in line with its tie rod straight ahead (a dead point: it cannot steer)",
+                {"knuckle_angle", "initial_angle_right_tie_rod"});
+  return out;
+}
+
+// A least-squares fit of y = c1 x + ... + cn x^n (through zero) over the samples, in x scaled to [-1, 1],
+// then weighted towards the largest errors (Lawson's iteration) to bring the maximum error down.
+PolynomialFit fit(const std::vector<std::pair<double, double>>& xy, int degree) {
+  double scale = 0;
+  for (const auto& [x, y] : xy) scale = std::max(scale, std::abs(x));
+  PolynomialFit out;
+  out.c.assign(static_cast<size_t>(degree) + 1, 0.0);
+  if (!(scale > 0)) return out;
+  const int n = static_cast<int>(xy.size());
+  Eigen::MatrixXd a(n, degree);
+  Eigen::VectorXd b(n), weight = Eigen::VectorXd::Ones(n);
+  for (int s = 0; s < n; ++s) {
+    const double u = xy[static_cast<size_t>(s)].first / scale;
+    double power = 1;
+    for (int p = 0; p < degree; ++p) a(s, p) = power *= u;
+    b(s) = xy[static_cast<size_t>(s)].second;
+  }
+  Eigen::VectorXd best;
+  double best_error = INFINITY;
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const Eigen::VectorXd root = weight.cwiseSqrt();
+    const Eigen::VectorXd c = (root.asDiagonal() * a).colPivHouseholderQr().solve(root.asDiagonal() * b);
+    const Eigen::VectorXd residual = (a * c - b).cwiseAbs();
+    if (residual.maxCoeff() < best_error) {
+      best_error = residual.maxCoeff();
+      best = c;
+    }
+    weight = weight.cwiseProduct(residual.array().max(1e-300).matrix());
+    weight /= weight.sum();
+  }
+  for (int p = 0; p < degree; ++p) out.c[static_cast<size_t>(p) + 1] = best(p) / std::pow(scale, p + 1);
+  return out;
+}
+
+double max_error(const PolynomialFit& f, const std::vector<std::pair<double, double>>& xy) {
+  double e = 0;
+  for (const auto& [x, y] : xy) e = std::max(e, std::abs(evaluate_polynomial(f.c, x) - y));
+  return e;
+}
+
+bool monotonic(const PolynomialFit& f, double low, double high) {
+  constexpr int kChecks = 4000;
+  double previous = evaluate_polynomial(f.c, low);
+  const double rising = evaluate_polynomial(f.c, high) > previous ? 1.0 : -1.0;
+  for (int k = 1; k <= kChecks; ++k) {
+    const double y = evaluate_polynomial(f.c, low + (high - low) * k / kChecks);
+    if ((y - previous) * rising <= 0) return false;
+    previous = y;
+  }
+  return true;
+}
+
+// How far the input reaches in `direction` (±1): both loops close and both wheels keep turning the way they
+// start. Marches in steps of about 2 mrad of the left wheel, then bisects the last step.
+double reach(const Mechanism& m, double direction, double slope) {
+  const double step = 2e-3 / std::abs(slope);
+  const double eps = 1e-9 / std::abs(slope);
+  auto good = [&](double theta) {
+    const auto at = m.angles(theta), before = m.angles(theta - direction * eps);
+    if (!at || !before) return false;
+    const double turn = direction * (slope > 0 ? 1.0 : -1.0);
+    return (at->first - before->first) * turn > 0 && (at->second - before->second) * turn > 0;
+  };
+  double inside = 0, outside = 0;
+  bool stopped = false;
+  for (int k = 1; k <= 20000; ++k) {  // 40 rad of wheel: every linkage has stopped well before
+    if (!good(direction * step * k)) {
+      inside = direction * step * (k - 1);
+      outside = direction * step * k;
+      stopped = true;
+      break;
+    }
+  }
+  if (!stopped) return direction * step * 20000;
+  for (int k = 0; k < 80; ++k) {
+    const double mid = (inside + outside) / 2;
+    (good(mid) ? inside : outside) = mid;
+  }
+  return inside;
+}
+
+}  // namespace
+
+double evaluate_polynomial(const std::vector<double>& c, double x) {
+  double y = 0;
+  for (size_t p = c.size(); p-- > 0;) y = y * x + c[p];  // Horner
+  return y;
+}
+
+std::optional<std::pair<double, double>> steering_angles(const SteeringGeometry& g, double input) {
+  const Built built = build(g);
+  if (!built.problem.empty()) return std::nullopt;
+  return built.m.angles(input);
+}
+
+SteeringLinkage steering_linkage(const SteeringGeometry& g) {
+  SteeringLinkage out;
+  const Built built = build(g);
+  if (!built.problem.empty()) {
+    out.problem = built.problem;
+    out.attributes = built.attributes;
+    return out;
+  }
+  const Mechanism& m = built.m;
+  constexpr double kProbe = 1e-7;
+  const auto probe = m.angles(kProbe);
   const double slope = probe ? probe->first / kProbe : 0;
   if (!probe || !std::isfinite(slope) || std::abs(slope) < 1e-9) {
-    out.problem = probe ? "does not turn the wheels (gear or steering_column_distance is zero)"
-                        : "cannot close its tie-rod loops straight ahead";
+    out.problem = "cannot turn its wheels from straight ahead";
+    out.attributes = {"knuckle_angle", "knuckle_length"};
     return out;
   }
-  const double step = kSteeringRange / std::abs(slope) / kSteps;
-  out.samples.push_back({0, 0, 0});
-  for (const double direction : {1.0, -1.0}) {
-    double near_l = 0, near_r = 0;
-    bool edge = false;
-    for (int k = 1; k <= 4 * kSteps; ++k) {
-      const double theta = direction * step * k;
-      const auto angles = solve(theta, near_l, near_r);
-      if (!angles) break;
-      const auto [left, right] = *angles;
-      if (std::abs(left) > kSteeringRange || std::abs(right) > kSteeringRange) {
-        edge = true;
-        break;
-      }
-      if ((left - near_l) * direction * slope <= 0) break;  // past a dead point: no longer one-to-one
-      out.samples.push_back({theta, left, right});
-      near_l = left;
-      near_r = right;
-    }
-    out.closes = out.closes && edge;
+  out.low = reach(m, -1, slope);
+  out.high = reach(m, 1, slope);
+  // Samples clustered towards the ends (Chebyshev points), where a dead point bends the curves most.
+  constexpr int kSamples = 1200;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double t = 0.5 - 0.5 * std::cos(M_PI * k / kSamples);
+    const double input = out.low + (out.high - out.low) * t;
+    if (const auto a = m.angles(input)) out.samples.push_back({input, a->first, a->second});
   }
   std::vector<std::pair<double, double>> in_left, left_right;
   for (const SteeringSample& s : out.samples) {
     in_left.emplace_back(s.input, s.left);
     left_right.emplace_back(s.left, s.right);
-    out.low = std::min(out.low, s.input);
-    out.high = std::max(out.high, s.input);
   }
-  out.input_to_left = fit_quartic(in_left);
-  out.linkage = fit_quartic(left_right);
-  return out;
-}
-
-}  // namespace
-
-SteeringLinkage ackermann_linkage(const SteeringGeometry& g) {
-  const Knuckles k = knuckles(g);
-  const double tie = ((k.kl + k.arm_l) - (k.kr + k.arm_r)).norm();
-  SteeringLinkage out;
-  out.samples.push_back({0, 0, 0});
-  for (const double direction : {1.0, -1.0}) {
-    double near = 0;
-    bool edge = false;
-    for (int s = 1; s <= kSteps; ++s) {
-      const double left = direction * kSteeringRange * s / kSteps;
-      const Vector2d pl = k.kl + Eigen::Rotation2Dd(left) * k.arm_l;
-      const std::optional<double> right = arm_angle(k.kr, k.arm_r, g.knuckle_length, pl, tie, near);
-      if (!right) break;
-      edge = std::abs(*right) > kSteeringRange || s == kSteps;
-      if (std::abs(*right) > kSteeringRange) break;
-      out.samples.push_back({left, left, *right});
-      near = *right;
+  if (g.mechanism == SteeringMechanism::Ackermann) {
+    out.input_to_left.c = {0.0, 1.0};
+  } else {
+    // The runtime evaluates p (any degree): the lowest degree up to 12 within 1e-7 rad, else the best.
+    // It must rise (or fall) with the input throughout, for the output inverts it.
+    PolynomialFit best;
+    best.max_error = INFINITY;
+    for (int degree = 4; degree <= 12; ++degree) {
+      PolynomialFit f = fit(in_left, degree);
+      f.max_error = max_error(f, in_left);
+      if (f.max_error < best.max_error && monotonic(f, out.low, out.high)) best = f;
+      if (best.max_error <= 1e-7) break;
     }
-    out.closes = out.closes && edge;
+    out.input_to_left = best;
   }
-  std::vector<std::pair<double, double>> left_right;
-  for (const SteeringSample& s : out.samples) {
-    left_right.emplace_back(s.left, s.right);
-    out.low = std::min(out.low, s.input);
-    out.high = std::max(out.high, s.input);
+  out.input_to_left.max_error = max_error(out.input_to_left, in_left);
+  // The quartic q: fitted where it can follow the linkage within kLinkageTolerance, the widest part of the
+  // reach about straight ahead (the same fraction of it each way), for near a dead point the right wheel's
+  // angle bends like a square root, which no quartic follows: beyond that part q extrapolates, and its
+  // error over the whole reach is what it reports.
+  constexpr double kLinkageTolerance = 2e-3;
+  auto within = [&](double fraction) {
+    std::vector<std::pair<double, double>> part;
+    for (const SteeringSample& s : out.samples) {
+      if (s.input >= fraction * out.low && s.input <= fraction * out.high) part.emplace_back(s.left, s.right);
+    }
+    PolynomialFit f = fit(part, 4);
+    f.max_error = max_error(f, part);
+    return f;
+  };
+  double fits = 0, misses = 1;
+  PolynomialFit q = within(1);
+  if (q.max_error > kLinkageTolerance) {
+    for (int k = 0; k < 16; ++k) {
+      const double mid = (fits + misses) / 2;
+      (within(mid).max_error <= kLinkageTolerance ? fits : misses) = mid;
+    }
+    q = within(std::max(fits, 0.05));
+  } else {
+    fits = 1;
   }
-  out.input_to_left.c[1] = 1;
-  out.linkage = fit_quartic(left_right);
+  out.linkage_fitted = q.max_error;
+  out.fitted_low = std::max(fits, 0.05) * out.low;
+  out.fitted_high = std::max(fits, 0.05) * out.high;
+  out.linkage = q;
+  out.linkage.max_error = max_error(out.linkage, left_right);
   return out;
-}
-
-SteeringLinkage bell_crank_linkage(const SteeringGeometry& g) {
-  SteeringGeometry lever = g;
-  lever.rack_length = 0;
-  return column_linkage(lever, true);
-}
-
-SteeringLinkage rack_and_pinion_linkage(const SteeringGeometry& g) {
-  return column_linkage(g, false);
 }
 
 }  // namespace openplx::mjcf

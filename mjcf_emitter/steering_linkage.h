@@ -1,44 +1,54 @@
-// The planar linkages of kinematic steering (Vehicles.Steering.Kinematic), solved exactly and fitted with the
-// quartics MuJoCo's joint equalities take. The geometry is ours, UNCONFIRMED against AGX, which documents
-// only the parameters' meanings.
+// The planar linkages of kinematic steering (Vehicles.Steering.Kinematic), solved in closed form and fitted
+// with the polynomials MuJoCo's joint equality (a quartic) and the runtime (any degree) evaluate.
 //
-// The plane is the one across the steering axis: x forward, y to the left, the kingpins at (0, ±track/2).
-// Wheel angles are positive about the steering axis pointing up (a left turn). Each knuckle arm, of
-// knuckle_length, points rearward and tilts inward by |knuckle_angle| - 90° (knuckle_angle is read from the
-// axle line pointing outward).
-//  - Ackermann: one tie rod joins the two arm ends, with the length it has straight ahead; the input is the
-//    left wheel's angle.
-//  - BellCrank: each tie rod leaves its arm end inward at initial_angle_right_tie_rod to the axle line
-//    (positive: sloping forward) and both meet on the centre line at the end of a lever of
-//    steering_column_distance, pivoted on the centre line ahead of that end (the lever points rearward).
-//    The input θ is the steering-wheel angle; the lever turns gear·θ about the up axis, so a positive input
-//    swings its end to the right, pulls the arm ends (behind the kingpins) right and turns the wheels left.
-//  - RackAndPinion: the tie rods start at the same angle but end at the two ends of a rack of rack_length,
-//    centred on the centre line; the pinion turns gear·θ and, with steering_column_distance as its arm,
-//    moves the rack to the right by steering_column_distance·gear·θ.
-// Each wheel's angle closes its own tie-rod loop (two circles meet), continuing from the previous solution.
+// AGX's geometry, every length a fraction of the track w (the distance between the two kingpins, i.e. the
+// suspensions' chassis connectors), as AGXUnity's steering drawing builds it. The plane is the one across
+// the steering axis: x forward, y to the left, kingpins at (0, ±w/2); wheel angles are positive about the
+// steering axis pointing up (a left turn).
+//  - Knuckle arms of b = knuckle_length·w: the right one along the outward axle direction turned by
+//    knuckle_angle (φ0) about the steering axis, b (sin φ0, -cos φ0); the left one its mirror image,
+//    b (sin φ0, cos φ0). AGX's defaults (φ0 about -108°..-115°) point them rearward and inward.
+//  - Ackermann: one tie rod joins the two arm ends, its length the distance between them straight ahead,
+//    (1 + 2 l cos φ0)·w; the input is the left wheel's angle.
+//  - BellCrank and RackAndPinion: from each arm end a tie rod runs inward at initial_angle_right_tie_rod
+//    (α0) to the axle line (positive: sloping forward), of length R = (1 + 2 l cos φ0 - lr)·w / (2 cos α0),
+//    so that it ends at the rack's end, lr·w/2 from the centre line (lr = rack_length; 0 for BellCrank,
+//    whose tie rods meet on the centre line). The steering column stands s = steering_column_distance·l·w
+//    ahead of those inner ends, on the centre line; the input θ is the steering-wheel angle and the column
+//    turns gear·θ (AGX's gear: UNCONFIRMED whether it multiplies or divides; here it multiplies).
+//    BellCrank: the tie rods' inner ends ride on a lever of length s from the column, pointing rearward at
+//    rest. RackAndPinion: the rack moves right by s·tan(gear·θ).
+// Each wheel's angle closes its own loop (two circles meet), on the branch of straight ahead.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace openplx::mjcf {
 
+enum class SteeringMechanism { Ackermann, BellCrank, RackAndPinion };
+
 struct SteeringGeometry {
+  SteeringMechanism mechanism = SteeringMechanism::Ackermann;
   double track = 0;            // m, between the kingpins
-  double knuckle_length = 0;   // m
-  double knuckle_angle = 0;    // rad
-  double tie_rod_angle = 0;    // rad (BellCrank, RackAndPinion)
-  double column_distance = 0;  // m: the lever's (BellCrank) or pinion arm's (RackAndPinion) length
-  double rack_length = 0;      // m (RackAndPinion; 0 for BellCrank: both tie rods meet at one point)
-  double gear = 1;             // steering arm rotation per input rotation
+  double knuckle_length = 0;   // l: the knuckle arm over the track
+  double knuckle_angle = 0;    // φ0, rad
+  double tie_rod_angle = 0;    // α0, rad (BellCrank, RackAndPinion)
+  double column_distance = 0;  // lc: the steering arm over the knuckle arm (BellCrank, RackAndPinion)
+  double rack_length = 0;      // lr: the rack over the track (RackAndPinion)
+  double gear = 1;             // column rotation per input rotation (BellCrank, RackAndPinion)
 };
 
-// y = c[0] + c[1] x + ... + c[4] x^4, least-squares fitted through zero (c[0] = 0: straight ahead is exact).
-struct QuarticFit {
-  std::array<double, 5> c{};
-  double max_error = 0;  // over the samples fitted
+// The wheel angles (left, right) for `input` on the straight-ahead branch; nullopt where a loop cannot close.
+std::optional<std::pair<double, double>> steering_angles(const SteeringGeometry& g, double input);
+
+// y = c[0] + c[1] x + ... (c[0] = 0: straight ahead is exact).
+struct PolynomialFit {
+  std::vector<double> c;
+  double max_error = 0;  // rad, over the linkage's whole input range
 };
 
 struct SteeringSample {
@@ -46,19 +56,20 @@ struct SteeringSample {
 };
 
 struct SteeringLinkage {
-  std::string problem;                  // not empty: the geometry cannot steer, and why
-  std::vector<SteeringSample> samples;  // straight ahead, then left turns outward, then right turns
-  double low = 0, high = 0;             // the inputs covered
-  bool closes = true;                   // false: the loop broke before both wheels reached the range's edge
-  QuarticFit input_to_left;             // left = p(input) (the identity for Ackermann)
-  QuarticFit linkage;                   // right = q(left)
+  std::string problem;                  // not empty: the geometry cannot steer, and why (naming attributes)
+  std::vector<std::string> attributes;  // the attributes `problem` is about
+  std::vector<SteeringSample> samples;  // over [low, high], ascending input
+  double low = 0, high = 0;             // the inputs the linkage reaches: both loops close, both wheels
+                                        // turning with the input (each end a dead point or a loop's limit)
+  PolynomialFit input_to_left;          // left = p(input): {0, 1} for Ackermann, a higher degree for columns
+  PolynomialFit linkage;                // right = q(left), a quartic (c has 5 entries: MuJoCo's polycoef),
+                                        // its max_error over the whole reach
+  double fitted_low = 0, fitted_high = 0;  // the inputs over which q was fitted
+  double linkage_fitted = 0;               // q's error there (rad)
 };
 
-// The steering range: both wheels within this angle of straight ahead (about 34°, a road vehicle's lock).
-inline constexpr double kSteeringRange = 0.6;
+SteeringLinkage steering_linkage(const SteeringGeometry& g);
 
-SteeringLinkage ackermann_linkage(const SteeringGeometry& g);
-SteeringLinkage bell_crank_linkage(const SteeringGeometry& g);
-SteeringLinkage rack_and_pinion_linkage(const SteeringGeometry& g);
+double evaluate_polynomial(const std::vector<double>& c, double x);
 
 }  // namespace openplx::mjcf

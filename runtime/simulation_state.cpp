@@ -210,6 +210,10 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
       } else if (b.input && b.quantity == Quantity::EngagementFraction) {
         s.low = 0;
         s.high = 1;
+      } else if (b.input && b.quantity == Quantity::EqualityTarget &&
+                 (b.low < b.high || (b.low == b.high && !b.initial_vector.empty()))) {
+        s.low = b.low;  // a kinematic steering's reach (its linkage's dead points; 0 when it cannot close)
+        s.high = b.high;
       } else if (b.input && b.quantity == Quantity::EqualityTarget && b.initial_vector.empty() &&
                  m->jnt_limited[m->eq_obj1id[id]]) {  // a kinematic steering joint's travel
         s.low = m->jnt_range[2 * m->eq_obj1id[id]];

@@ -32,6 +32,21 @@ void read_steering(AttributeReader& in, frontend::ObjectId id, Interaction1D& st
     if (steering.mechanism == "RackAndPinion") steering.rack_length = in.real(id, "rack_length");
   }
   const frontend::ObjectId system = in.graph().at(id).owner;
+  // Where the user wrote each geometry attribute, on the steering system (the bundle forwards it to the
+  // interaction) or on the interaction itself, for warnings at the user's line.
+  auto written_by_user = [&](frontend::ObjectId object, const char* name) -> const frontend::Slot* {
+    if (object == frontend::kNoObject) return nullptr;
+    const frontend::Slot* slot = in.graph().at(object).find(name);
+    const bool user = slot && slot->binding.entry && slot->binding.entry->member && slot->binding.model &&
+                      !(slot->binding.model->doc && slot->binding.model->doc->bundle);
+    return user ? slot : nullptr;
+  };
+  for (const char* name : {"knuckle_angle", "knuckle_length", "initial_angle_right_tie_rod",
+                           "steering_column_distance", "rack_length", "gear"}) {
+    const frontend::Slot* slot = written_by_user(system, name);
+    if (!slot) slot = written_by_user(id, name);
+    if (slot) steering.written.emplace_back(name, slot->binding.entry->member->range);
+  }
   if (system == frontend::kNoObject) return;
   const char* sides[2] = {"left_suspension", "right_suspension"};
   for (int side = 0; side < 2; ++side) {

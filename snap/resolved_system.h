@@ -153,11 +153,14 @@ struct Interaction1D {
   double default_effort = 0;                     // force/torque motors: default_force / default_torque
   int steered[2] = {-1, -1};                     // Steering: the left and right suspension mates
   std::string mechanism;                         // Steering: "Ackermann", "BellCrank", "RackAndPinion"
-  double knuckle_angle = 0, knuckle_length = 0;  // Steering: knuckle arm angle from the axle (rad), length
-  // Steering, BellCrank and RackAndPinion: the tie rods' angle to the axle line at rest (rad), the steering
-  // arm's length (bell crank lever or pinion arm, m), the rack's length (m, RackAndPinion) and the ratio of
-  // steering arm rotation to steering input.
+  // Steering (AGX's parameters: lengths are fractions of the track): the knuckle arm's angle from the axle
+  // (rad) and length (over the track); BellCrank and RackAndPinion: the tie rods' angle to the axle line at
+  // rest (rad), the steering arm's length (over the knuckle arm's), the rack's length (over the track,
+  // RackAndPinion) and the steering column's rotation per input rotation.
+  double knuckle_angle = 0, knuckle_length = 0;
   double tie_rod_angle = 0, column_distance = 0, rack_length = 0, gear = 1;
+  // Steering: where the user wrote each geometry attribute it has (a bundle default has no entry).
+  std::vector<std::pair<std::string, frontend::SourceRange>> written;
   frontend::SourceRange where;
 };
 

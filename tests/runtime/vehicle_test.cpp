@@ -79,10 +79,10 @@ TEST(VehicleSuspension, TooStiffASpringIsHeldRigidAndSaidAtTheUsersLine) {
 }
 
 // AGX's steering test: 0.5 on the steering input gives 0.5 on its output within 1e-6 after 1 s (0 before).
-// The right wheel follows the trapezoid: kingpins 1.6 m apart, knuckle arms of 0.16 m pointing rearward and
-// 25° inward (knuckle_angle -2.007 rad), a tie rod between their ends whose length the steering must keep;
-// MuJoCo's quartic fit to that linkage is within 6e-3 rad over the steering range, so the tie rod keeps its
-// length to l · 6e-3 = 1 mm.
+// The right wheel follows the trapezoid: kingpins 1.6 m apart, knuckle arms of 0.16 of that (0.256 m)
+// pointing rearward and 25° inward (knuckle_angle -2.007 rad), a tie rod between their ends whose length the
+// steering must keep; MuJoCo's quartic fit to that linkage is within 2e-3 rad for left angles -0.38 to 0.72,
+// so the tie rod keeps its length to l · 2e-3 = 0.5 mm.
 TEST(VehicleSteering, AckermannFollowsItsInputAndKeepsTheTieRod) {
   const openplx::testing::ScratchDir dir;
   std::ofstream(dir / "car.openplx") << car(
@@ -100,7 +100,7 @@ TEST(VehicleSteering, AckermannFollowsItsInputAndKeepsTheTieRod) {
   EXPECT_GT(right, 0.2);   // both turn left ...
   EXPECT_LT(right, left);  // ... the inner (left) wheel more: Ackermann
   // The tie rod: arm ends at straight ahead and now, in the plane (x forward, y left).
-  const double w = 1.6, l = 0.16, beta = 2.007 - M_PI / 2;
+  const double w = 1.6, l = 0.16 * w, beta = 2.007 - M_PI / 2;
   const Eigen::Vector2d kl(0, w / 2), kr(0, -w / 2);
   const Eigen::Vector2d arm_l(-l * std::cos(beta), -l * std::sin(beta)),
       arm_r(-l * std::cos(beta), l * std::sin(beta));
