@@ -6,6 +6,21 @@
 
 namespace openplx::mjcf {
 
+// A range is a hard row in AGX. MuJoCo's limit row under a push a0 (the acceleration the push alone would
+// give) rests (1 - d)/d a0/k past the limit, k = 1 / (d tc)^2: with MuJoCo's stiffest impedance d = 0.9999
+// and the shortest critically damped time constant an explicit step keeps stable, tc = 2h, that is
+// 4e-4 h^2 a0 (4.8e-6 rad for 5,000 N m on 1.67 kg m^2 at h = 0.002). MuJoCo's default (0.02 s, d 0.95)
+// left 0.06 rad there. A limit acts once violated, so a joint arriving at speed v also enters by up to
+// v h + a0 h^2 in its last free step, which the row takes back critically damped (no bounce).
+namespace {
+
+void hard_stop(Element& limited, double h) {
+  limited.set("solreflimit", number(2 * h) + " 1")
+      .set("solimplimit", number(kRigidImpedance) + " " + number(kRigidImpedance) + " 0.001 0.5 2");
+}
+
+}  // namespace
+
 void Lowering::emit_actuators(Element& root) {
   Element& actuators = root.add("actuator");
   using K = sn::Interaction1D::Kind;
@@ -52,7 +67,8 @@ void Lowering::emit_actuators(Element& root) {
       case K::RotationalRange: {
         const double lo = i.start, hi = i.end;
         range_joints_[index_in(view_.interactions, i)] = joint_name;
-        if (!i.enabled) break;  // its enable input sets the limit
+        hard_stop(*joint, options_.timestep);  // also while disabled: its enable input switches the limit on
+        if (!i.enabled) break;                 // its enable input sets the limit
         auto [it, fresh] = ranges.try_emplace(joint, lo, hi);
         if (!fresh) it->second = {std::max(it->second.first, lo), std::min(it->second.second, hi)};
         break;
@@ -223,8 +239,10 @@ void Lowering::emit_distance_interaction(Element& root, Element& actuators, cons
   if (!tendons) tendons = &root.add("tendon");
   Element& tendon = tendons->add("spatial");
   tendon.set("name", name(i.path));
-  if (range)
+  if (range) {
     tendon.set("limited", i.enabled ? "true" : "false").set("range", number(i.start) + " " + number(i.end));
+    hard_stop(tendon, options_.timestep);
+  }
   tendon.add("site").set("site", site_for(a));
   tendon.add("site").set("site", site_for(b));
   const int index = index_in(view_.interactions, i);

@@ -6,6 +6,26 @@
 
 namespace openplx::mjcf {
 
+namespace {
+
+// MuJoCo's noslip post-solver (README "Velocity motors", "Clutches and brakes"). Isolated friction rows
+// settle in one sweep and stop the sweeps after the next; a chain of coupled rows uses them all.
+constexpr int kNoslipIterations = 10;
+// Its stopping test divides the improvement by the mean joint inertia, which the motors' heavy reference
+// joints inflate a millionfold: the default 1e-6 stops it after one sweep whatever is left.
+constexpr double kNoslipTolerance = 1e-15;
+
+// A fixed tendon with friction loss is a friction-row drive: a velocity motor, a clutch, a brake or a
+// differential's slip limit (its loss may be 0 until an input engages or enables it).
+bool has_friction_row_drives(Element& root) {
+  const Element* tendons = root.child("tendon");
+  if (!tendons) return false;
+  return std::any_of(tendons->children().begin(), tendons->children().end(),
+                     [](const auto& t) { return t->name() == "fixed" && t->get("frictionloss"); });
+}
+
+}  // namespace
+
 Emitted Lowering::run() {
   Emitted out;
   Element& root = out.document;
@@ -18,7 +38,10 @@ Emitted Lowering::run() {
       .set("balanceinertia", "false")
       .set("fusestatic", "false")
       .set("discardvisual", "false");
-  root.add("option").set("timestep", options_.timestep).set("gravity", gravity()).set("integrator", "Euler");
+  Element& option = root.add("option")
+                        .set("timestep", options_.timestep)
+                        .set("gravity", gravity())
+                        .set("integrator", "Euler");
   // Room for track links' contacts, sized by the tracks pass (tracks.cpp) once it knows the links it made.
   if (!view_.tracks.empty()) size_ = &root.add("size");
   for (const sn::Unsupported& u : view_.unsupported) {
@@ -52,6 +75,11 @@ Emitted Lowering::run() {
   if (assets_->children().empty()) drop_empty(root, "asset");
   for (const char* section : {"tendon", "equality", "contact", "actuator", "sensor"})
     drop_empty(root, section);
+  // A friction row leaks h (1 - d) of the acceleration it holds back each step (d <= 0.9999, MuJoCo's
+  // stiffest); noslip re-solves friction rows without that softness. It also re-solves contact friction and
+  // costs time, so only models with friction-row drives get it.
+  if (has_friction_row_drives(root))
+    option.set("noslip_iterations", kNoslipIterations).set("noslip_tolerance", kNoslipTolerance);
   out.laws = laws_;
   if (options_.manifest_text)
     out.manifest_json = manifest_json(options_.model_name, options_.prefix, out.signals, out.laws);
