@@ -5,9 +5,58 @@
 
 namespace openplx::mjcf {
 
+namespace {
+
+// The MuJoCo bodies (node indices) of each wheel and the chassis it hangs on: the two bodies of a
+// suspension mate, and the chassis with an elastic wheel's tire (its tire mate's other body, below the rim).
+// AGX's wheel joint keeps them out of contact with each other; so must MuJoCo.
+std::set<std::pair<int, int>> wheel_chassis_bodies(const sn::ResolvedSystem& view) {
+  std::set<std::pair<int, int>> pairs;
+  auto body_of = [&](int connector) {
+    const int owner = connector < 0 ? sn::kWorld : view.connectors[connector].owner;
+    return owner >= 0 && view.nodes[owner].kind == sn::FrameNode::Kind::Body ? owner : sn::kWorld;
+  };
+  for (const sn::Mate& suspension : view.mates) {
+    if (suspension.type != sn::MateType::Suspension) continue;
+    const int chassis = body_of(suspension.connectors[0]), wheel = body_of(suspension.connectors[1]);
+    if (chassis < 0 || wheel < 0 || chassis == wheel) continue;  // on the world: the ground's contacts stay
+    pairs.insert(std::minmax(chassis, wheel));
+    for (const sn::Mate& tire : view.mates) {
+      if (tire.type != sn::MateType::ElasticTire) continue;
+      const int a = body_of(tire.connectors[0]), b = body_of(tire.connectors[1]);
+      const int other = a == wheel ? b : b == wheel ? a : sn::kWorld;
+      if (other >= 0 && other != chassis) pairs.insert(std::minmax(chassis, other));
+    }
+  }
+  return pairs;
+}
+
+// Whether MuJoCo leaves out the contacts of two bodies by itself: bodies of one weld group never touch,
+// and a weld group does not touch its parent's, unless either is welded to the world (a static chassis
+// is: its wheels would touch it). A body's weld group is its nearest ancestor-or-self with a joint.
+bool mujoco_filters(int a, int b, const std::vector<TreeEdge>& edges, const std::map<int, Element*>& bodies) {
+  auto weld = [&](int n) {
+    for (; n != kWorldVertex; n = edges[n].parent) {
+      auto it = bodies.find(n);
+      if (it == bodies.end()) return kWorldVertex;
+      for (const std::unique_ptr<Element>& e : it->second->children())
+        if (e->name() == "joint" || e->name() == "freejoint") return n;
+    }
+    return kWorldVertex;
+  };
+  const int wa = weld(a), wb = weld(b);
+  if (wa == wb) return true;
+  if (wa == kWorldVertex || wb == kWorldVertex) return false;
+  return wa == weld(edges[wb].parent) || wb == weld(edges[wa].parent);
+}
+
+}  // namespace
+
 // One <pair> per pair of colliding geometries whose materials a SurfaceContact model names.
 void Lowering::emit_contact_pairs(Element& root) {
   Element* contact = root.child("contact");
+  const std::set<std::pair<int, int>> wheels =
+      view_.contact_models.empty() ? std::set<std::pair<int, int>>{} : wheel_chassis_bodies(view_);
   for (const sn::ContactModel& cm : view_.contact_models) {
     if (!cm.enabled) continue;
     const double mu = cm.friction;
@@ -26,6 +75,7 @@ void Lowering::emit_contact_pairs(Element& root) {
         const bool match = (a.material == cm.material1 && b.material == cm.material2) ||
                            (a.material == cm.material2 && b.material == cm.material1);
         if (!match || !emitted_geoms_.count(a.path) || !emitted_geoms_.count(b.path)) continue;
+        if (wheels.count(std::minmax(a.owner, b.owner))) continue;  // a <pair> would bypass the exclusion
         contact->add("pair")
             .set("name", name(cm.path) + "/" + std::to_string(pairs++))
             .set("geom1", name(a.path))
@@ -37,15 +87,24 @@ void Lowering::emit_contact_pairs(Element& root) {
   }
 }
 
+// Contacts filtered out: each wheel from its chassis, where MuJoCo does not already keep them apart (a
+// static chassis, an elastic wheel's tire two bodies below it, a suspension closing a loop), and
 // Simulation.DisableCollisionPair. MuJoCo excludes contacts per pair of bodies, so each group becomes the
 // bodies that hold its systems', bodies' and geometries' shapes; a group naming only some of a body's
 // colliding geometries is widened to the whole body, with a warning.
 void Lowering::emit_collision_filters(Element& root) {
-  if (view_.collision_filters.empty()) return;
   Element* contact = root.child("contact");
   std::set<std::pair<std::string, std::string>> excluded;
   for (const std::unique_ptr<Element>& e : contact->children()) {
     if (e->name() == "exclude") excluded.insert({*e->get("body1"), *e->get("body2")});
+  }
+  for (const auto& [a, b] : wheel_chassis_bodies(view_)) {
+    if (!body_element_.count(a) || !body_element_.count(b) || mujoco_filters(a, b, edges_, body_element_))
+      continue;
+    const std::string body_a = mujoco_body(a), body_b = mujoco_body(b);
+    const auto pair = std::minmax(body_a, body_b);
+    if (excluded.insert({pair.first, pair.second}).second)
+      contact->add("exclude").set("body1", pair.first).set("body2", pair.second);
   }
   for (const sn::CollisionFilter& f : view_.collision_filters) {
     std::vector<std::string> widened;

@@ -1125,14 +1125,22 @@ class SystemBuilder {
   }
 
   // A redirected connector (RedirectedMateConnector, 0.31's ConnectorProperties.Redirected) is written in its
-  // owner's frame and attached to `redirected_parent`: it moves to that body, its frame re-expressed through
-  // the declared transforms between them (a wheel's rim at the wheel's origin). A body that is not below the
-  // owner, or whose placement SNAP has yet to find, cannot take it.
+  // owner's frame and attached to `redirected_parent`. A parent below the owner through declared transforms
+  // takes it here (a wheel's rim at the wheel's origin); any other body of the model (a vehicle's chassis
+  // that SNAP places, a sibling system's body) takes it after assembly, keeping the world frame the
+  // connector was assembled at (spec/snap.md 2.2: W(parent)⁻¹ ∘ W(owner) ∘ M). Until then it is on its
+  // owner, as written: SNAP places the parts it joins from there.
   void resolve_redirects() {
     for (const auto& [k, body] : redirects_) {
       Connector& c = view_.connectors[k];
       auto it = node_of_.find(body);
-      if (it == node_of_.end() || it->second == c.owner) continue;
+      if (it == node_of_.end()) {
+        sink_.report(fe::DiagCode::MjcfUnmapped, c.where,
+                     "`" + c.path + ".redirected_parent` is not a body of this model (" + path_of(body) +
+                         "); the connector stays on its owner");
+        continue;
+      }
+      if (it->second == c.owner) continue;
       Transform chain;  // the body's frame in the owner's
       bool below = false, declared = true;
       for (int n = it->second; n != kWorld; n = view_.nodes[n].parent) {
@@ -1144,10 +1152,7 @@ class SystemBuilder {
         chain = natives::affine_compose(view_.nodes[n].local, chain);
       }
       if (!below || !declared) {
-        sink_.report(fe::DiagCode::MjcfUnmapped, c.where,
-                     "`" + c.path + ".redirected_parent` is " +
-                         (below ? "a body whose placement is not declared" : "not a body below its owner") +
-                         "; the connector stays on its owner");
+        c.redirect_to = it->second;
         continue;
       }
       c.owner = it->second;

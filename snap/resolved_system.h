@@ -250,6 +250,9 @@ struct Connector {
   std::string path;
   Transform local;  // frame relative to the owner: z = main_axis, x = normal (orthogonalised), y = z × x
   bool adaptive = false;
+  // A redirected connector's parent whose frame SNAP has to place first: after assembly the connector moves
+  // there, keeping its world frame (run_snap). -1: none.
+  int redirect_to = -1;
   frontend::SourceRange where;
 };
 

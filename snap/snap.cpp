@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "frontend/value_format.h"
 
@@ -66,6 +67,7 @@ class Snapper {
                        " and " + connector_name(mate.connectors[1]));
     }
     resolve_adaptive();
+    resolve_redirected();
     SnapResult result;
     for (size_t i = 0; i < view_.nodes.size(); ++i) result.node_world.push_back(world(static_cast<int>(i)));
     for (size_t c = 0; c < view_.connectors.size(); ++c)
@@ -221,6 +223,16 @@ class Snapper {
         c.local = affine_compose(affine_inverse(world(c.owner)), target);
         break;
       }
+    }
+  }
+
+  // A redirected connector whose parent needed assembly moves onto it now, keeping its world frame.
+  void resolve_redirected() {
+    for (Connector& c : view_.connectors) {
+      if (c.redirect_to < 0) continue;
+      c.local = affine_compose(affine_compose(affine_inverse(world(c.redirect_to)), world(c.owner)), c.local);
+      c.local.rotation.normalize();
+      c.owner = std::exchange(c.redirect_to, -1);
     }
   }
 
