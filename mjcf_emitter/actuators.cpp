@@ -1,4 +1,4 @@
-// Lowering pass, actuators: ranges as joint limits, springs as spring actuators, velocity motors as motor
+// Lowering pass, actuators: ranges as joint limits, springs (springs.cpp), velocity motors as motor
 // constraints (velocity_motors.cpp), force motors as <motor>s, all with their effort limits.
 #include "mjcf_emitter/lowering.h"
 
@@ -75,7 +75,7 @@ void Lowering::emit_actuators(Element& root) {
       }
       case K::LinearSpring:
       case K::TorsionSpring:
-        emit_spring(actuators, i, *joint, dampings);
+        emit_spring(root, actuators, i, *joint, dampings);  // springs.cpp
         break;
       case K::LinearVelocityMotor:
       case K::RotationalVelocityMotor: {
@@ -116,39 +116,6 @@ void Lowering::emit_effort_motor(Element& actuators, const sn::Interaction1D& i,
   const int index = index_in(view_.interactions, i);
   effort_ranges_[index] = effort_range(i);
   actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.default_effort};
-}
-
-// A spring as OpenPLX has it: its own rest (the actuator's control) and effort limits, f = k (rest - q) -
-// b qdot clamped to [min, max], one force as in AGX's spring constraint. The damping joins the clamped force
-// while explicit Euler keeps it stable (b h below the inertia driven); stiffer damping goes to the joint,
-// where Euler integrates it implicitly.
-void Lowering::emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
-                           std::map<Element*, double>& dampings) {
-  const double k = i.stiffness, b = spring_damping(i, k);
-  const bool clamped_damping = b * options_.timestep < effective_inertia(joint);
-  if (!clamped_damping) dampings[&joint] += b;
-  Element& a = actuators.add("general");
-  a.set("name", name(i.path))
-      .set("joint", *joint.get("name"))
-      .set("gainprm", k)
-      .set("biastype", "affine")
-      .set("biasprm", "0 " + number(-k) + " " + number(clamped_damping ? -b : 0.0));
-  effort_limits(a, i);
-  if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
-  const int index = index_in(view_.interactions, i);
-  effort_ranges_[index] = effort_range(i);
-  actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.rest};
-  springs_[index] = name(i.path);
-}
-
-// Viscous damping of a spring: MechanicalDamping gives it, ConstraintRelaxationTimeDamping gives the time
-// (b = t k); the default is AGX's: a relaxation time of two time steps.
-double Lowering::spring_damping(const sn::Interaction1D& i, double k) {
-  const sn::Damping& d = i.damping;
-  if (!d.given) return 0.0;
-  if (d.damping_constant) return *d.damping_constant;
-  if (d.relaxation_time) return *d.relaxation_time * k;
-  return 2 * options_.timestep * k;
 }
 
 // The inertia the joint drives at the initial pose: the subtree below it, about the joint axis (rotation)

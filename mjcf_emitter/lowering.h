@@ -165,9 +165,11 @@ class Lowering {
   void emit_tracks(Element& root);                                // tracks.cpp
   void bind_lidar(SignalBinding& b, int lidar);
   void emit_effort_motor(Element& actuators, const sn::Interaction1D& i, const std::string& joint);
-  void emit_spring(Element& actuators, const sn::Interaction1D& i, Element& joint,
+  // springs.cpp
+  void emit_spring(Element& root, Element& actuators, const sn::Interaction1D& i, Element& joint,
                    std::map<Element*, double>& dampings);
   double spring_damping(const sn::Interaction1D& i, double k);
+  double spring_relaxation_time(const sn::Interaction1D& i, double k);
   double effective_inertia(Element& joint);
   std::pair<double, double> effort_range(const sn::Interaction1D& i);
   void effort_limits(Element& actuator, const sn::Interaction1D& i);

@@ -411,13 +411,16 @@ void write_binding(Cursor& out, const SignalBinding& b) {
 }
 
 void write_law(Cursor& out, const RuntimeLaw& law) {
-  out.text(law.kind == RuntimeLaw::Kind::Engine
-               ? std::string_view("{\"kind\": \"engine\", \"path\": ")
+  out.text(law.kind == RuntimeLaw::Kind::Engine ? std::string_view("{\"kind\": \"engine\", \"path\": ")
+           : law.kind == RuntimeLaw::Kind::Spring
+               ? std::string_view("{\"kind\": \"spring\", \"path\": ")
                : std::string_view("{\"kind\": \"torque_converter\", \"path\": "));
   out.string(law.path).text(", \"actuators\": ").strings(law.actuators);
   out.text(", \"curve_x\": ").numbers(law.curve_x).text(", \"curve_y\": ").numbers(law.curve_y);
   out.text(", \"curve2_x\": ").numbers(law.curve2_x).text(", \"curve2_y\": ").numbers(law.curve2_y);
-  out.text(", \"parameter\": ").number(law.parameter).text("}");
+  out.text(", \"parameter\": ").number(law.parameter);
+  if (law.kind == RuntimeLaw::Kind::Spring) out.text(", \"joint_damping\": ").number(law.joint_damping);
+  out.text("}");
 }
 
 }  // namespace

@@ -151,12 +151,18 @@ struct RuntimeLaw {
     // pump speed, curve2 = torque multiplication over nu; parameter = oil_density * diameter^5. Writes
     // pump = -factor * parameter * w_pump |w_pump|, turbine = -multiplier * pump.
     TorqueConverter,
+    // actuators {spring} (its <general> stand-in; the fixed tendon of the same name holds the joint alone);
+    // parameter = SPOOK relaxation time (s); joint_damping = the damping the stand-in put on the joint. The
+    // runtime makes the tendon's friction row AGX's spring row (README "Springs") and adds its force to the
+    // actuator's.
+    Spring,
   };
   Kind kind = Kind::Engine;
   std::string path;                    // the OpenPLX part
   std::vector<std::string> actuators;  // MuJoCo actuator names
   std::vector<double> curve_x, curve_y, curve2_x, curve2_y;
   double parameter = 0;
+  double joint_damping = 0;  // Spring only
 };
 
 // The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").

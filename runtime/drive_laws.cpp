@@ -21,8 +21,12 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return span > 0 ? y[lo] + (y[hi] - y[lo]) * (at - x[lo]) / span : y[hi];
 }
 
-void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws) {
+void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws, bool between_steps) {
   for (const mjcf::RuntimeLaw& source : laws) {
+    if (source.kind == mjcf::RuntimeLaw::Kind::Spring) {
+      if (between_steps) springs_.resolve(m, source);
+      continue;
+    }
     Law law{source.kind,     {}, {}, source.curve_x, source.curve_y, source.curve2_x, source.curve2_y,
             source.parameter};
     for (const std::string& name : source.actuators) {
@@ -37,7 +41,8 @@ void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws) {
   }
 }
 
-void DriveLaws::apply(mjModel* m, mjData* d) const {
+void DriveLaws::apply(mjModel* m, mjData* d) {
+  if (!springs_.empty()) springs_.write_rows(m, d);
   for (const Law& law : laws_) {
     switch (law.kind) {
       case mjcf::RuntimeLaw::Kind::Engine: {
@@ -64,6 +69,8 @@ void DriveLaws::apply(mjModel* m, mjData* d) const {
         d->ctrl[law.actuators[1]] = turbine_torque;
         break;
       }
+      case mjcf::RuntimeLaw::Kind::Spring:
+        break;  // springs_
     }
   }
 }

@@ -68,9 +68,11 @@ mjcf::SignalBinding binding(const json& j) {
 mjcf::RuntimeLaw law(const json& j) {
   mjcf::RuntimeLaw l;
   const std::string kind = j.at("kind").get<std::string>();
-  if (kind != "engine" && kind != "torque_converter")
+  if (kind != "engine" && kind != "torque_converter" && kind != "spring")
     throw std::invalid_argument("unknown law `" + kind + "`");
-  l.kind = kind == "engine" ? mjcf::RuntimeLaw::Kind::Engine : mjcf::RuntimeLaw::Kind::TorqueConverter;
+  l.kind = kind == "engine"   ? mjcf::RuntimeLaw::Kind::Engine
+           : kind == "spring" ? mjcf::RuntimeLaw::Kind::Spring
+                              : mjcf::RuntimeLaw::Kind::TorqueConverter;
   l.path = j.at("path").get<std::string>();
   l.actuators = j.at("actuators").get<std::vector<std::string>>();
   l.curve_x = reals(j.at("curve_x"));
@@ -78,6 +80,7 @@ mjcf::RuntimeLaw law(const json& j) {
   l.curve2_x = reals(j.at("curve2_x"));
   l.curve2_y = reals(j.at("curve2_y"));
   l.parameter = real(j.at("parameter"));
+  if (j.contains("joint_damping")) l.joint_damping = real(j.at("joint_damping"));
   return l;
 }
 
@@ -219,13 +222,17 @@ std::string binding_problem(const mjcf::SignalBinding& b) {
 }
 
 std::string law_problem(const mjcf::RuntimeLaw& l) {
-  const size_t wanted = l.kind == mjcf::RuntimeLaw::Kind::Engine ? 1 : 2;
+  const size_t wanted = l.kind == mjcf::RuntimeLaw::Kind::TorqueConverter ? 2 : 1;
   if (l.actuators.size() != wanted) {
-    return std::string(l.kind == mjcf::RuntimeLaw::Kind::Engine ? "an engine law"
-                                                                : "a torque-converter law") +
+    return std::string(l.kind == mjcf::RuntimeLaw::Kind::Engine   ? "an engine law"
+                       : l.kind == mjcf::RuntimeLaw::Kind::Spring ? "a spring law"
+                                                                  : "a torque-converter law") +
            " needs " + (wanted == 1 ? "one actuator" : "two actuators (pump, turbine)") + ", not " +
            std::to_string(l.actuators.size());
   }
+  if (l.kind == mjcf::RuntimeLaw::Kind::Spring &&
+      !(l.parameter >= 0 && l.joint_damping >= 0 && std::isfinite(l.joint_damping)))
+    return "a spring's relaxation time and joint damping must be finite and not negative";
   for (const auto* curve : {&l.curve_x, &l.curve_y, &l.curve2_x, &l.curve2_y}) {
     if (!all_finite(*curve)) return "a curve holds a number that is not finite";
   }

@@ -152,7 +152,7 @@ SimulationState::~SimulationState() {
 
 void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
                               const std::vector<mjcf::RuntimeLaw>& drive_laws) {
-  laws.resolve(m, drive_laws);
+  laws.resolve(m, drive_laws, owns);  // a Simulation steps mj_step1, laws, mj_step2; a bridge does not
   kinematic_linear.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
   kinematic_angular.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
   for (mjcf::SignalBinding& b : bindings) {
@@ -499,6 +499,7 @@ void SimulationState::before_step() {
 }
 
 void SimulationState::after_step() {
+  laws.after_step(m, d);
   cache_constraint_forces();
   if (!post_step_signals.empty()) compute_post_step();
   ramp_engagements();

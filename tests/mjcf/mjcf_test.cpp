@@ -255,8 +255,8 @@ TEST_F(Mjcf, MultiInteractionExpressesAllSevenPerMate) {
   ASSERT_TRUE(load_corpus("multi_interaction.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("multi"));
   ASSERT_NE(m, nullptr);
-  ASSERT_EQ(m->njnt, 6);  // two mates, four motor references
-  EXPECT_EQ(m->ntendon, 4);
+  ASSERT_EQ(m->njnt, 6);     // two mates, four motor references
+  EXPECT_EQ(m->ntendon, 8);  // per mate: two motor tendons, two springs' row tendons (the joint alone)
   EXPECT_EQ(m->nu, 12);  // per mate: two references' drives, their bias forces (range inputs), two springs
   int mates = 0;
   for (int j = 0; j < m->njnt; ++j) {
@@ -269,7 +269,8 @@ TEST_F(Mjcf, MultiInteractionExpressesAllSevenPerMate) {
       springs += m->actuator_trnid[2 * u] == j && m->actuator_gainprm[u * mjNGAIN] == 100.0 &&
                  m->actuator_biasprm[u * mjNBIAS + 1] == -100.0;
     }
-    for (int t = 0; t < m->ntendon; ++t) motors += m->wrap_objid[m->tendon_adr[t]] == j;
+    for (int t = 0; t < m->ntendon; ++t)
+      motors += m->tendon_num[t] == 2 && m->wrap_objid[m->tendon_adr[t]] == j;
     EXPECT_EQ(springs, 2);
     EXPECT_EQ(motors, 2);
     EXPECT_TRUE(m->jnt_limited[j]);
