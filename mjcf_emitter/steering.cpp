@@ -8,6 +8,8 @@
 // output). The input's range is the linkage's reach; the runtime clamps inputs to it.
 #include <Eigen/Dense>
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 
 #include "mjcf_emitter/lowering.h"
 #include "mjcf_emitter/steering_linkage.h"
@@ -21,6 +23,13 @@ std::string coefficients(const std::vector<double>& c) {
   return out;
 }
 
+// A figure for a message: four significant digits.
+std::string figure(double v) {
+  std::ostringstream out;
+  out << std::setprecision(4) << v;
+  return out.str();
+}
+
 SteeringMechanism mechanism_of(const std::string& name) {
   return name == "BellCrank"       ? SteeringMechanism::BellCrank
          : name == "RackAndPinion" ? SteeringMechanism::RackAndPinion
@@ -29,15 +38,15 @@ SteeringMechanism mechanism_of(const std::string& name) {
 
 // The geometry as the user gave it: each attribute's value, lengths also in metres on this track.
 std::string parameters(const sn::Interaction1D& i, double track) {
-  std::string out = "track " + number(track) + " m, knuckle_length " + number(i.knuckle_length) + " (" +
-                    number(i.knuckle_length * track) + " m), knuckle_angle " + number(i.knuckle_angle) +
+  std::string out = "track " + figure(track) + " m, knuckle_length " + figure(i.knuckle_length) + " (" +
+                    figure(i.knuckle_length * track) + " m), knuckle_angle " + figure(i.knuckle_angle) +
                     " rad";
   if (i.mechanism == "Ackermann") return out;
-  out += ", initial_angle_right_tie_rod " + number(i.tie_rod_angle) + " rad, steering_column_distance " +
-         number(i.column_distance) + " (" + number(i.column_distance * i.knuckle_length * track) + " m)";
+  out += ", initial_angle_right_tie_rod " + figure(i.tie_rod_angle) + " rad, steering_column_distance " +
+         figure(i.column_distance) + " (" + figure(i.column_distance * i.knuckle_length * track) + " m)";
   if (i.mechanism == "RackAndPinion")
-    out += ", rack_length " + number(i.rack_length) + " (" + number(i.rack_length * track) + " m)";
-  return out + ", gear " + number(i.gear);
+    out += ", rack_length " + figure(i.rack_length) + " (" + figure(i.rack_length * track) + " m)";
+  return out + ", gear " + figure(i.gear);
 }
 
 // The user's line of the first of `attributes` the user wrote, else the steering's own line.
@@ -91,14 +100,14 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
     fit.input_to_left.c = {0.0};  // the left wheel at 0 whatever the input, and the right at 0 with it
     fit.linkage.c = {0, 0, 0, 0, 0};
   } else if (fit.input_to_left.max_error > 1e-2 || fit.linkage.max_error > 1e-2) {
-    std::string held = "MuJoCo's quartic holds the right wheel within " + number(fit.linkage_fitted) +
-                       " rad of the linkage for inputs " + number(fit.fitted_low) + " to " +
-                       number(fit.fitted_high) + " rad and within " + number(fit.linkage.max_error) +
+    std::string held = "MuJoCo's quartic holds the right wheel within " + figure(fit.linkage_fitted) +
+                       " rad of the linkage for inputs " + figure(fit.fitted_low) + " to " +
+                       figure(fit.fitted_high) + " rad and within " + figure(fit.linkage.max_error) +
                        " rad beyond, where the linkage bends towards its dead points as no quartic does";
     if (g.mechanism != SteeringMechanism::Ackermann)
-      held += "; the left wheel is held within " + number(fit.input_to_left.max_error) + " rad of its angle";
+      held += "; the left wheel is held within " + figure(fit.input_to_left.max_error) + " rad of its angle";
     warn(i.where, "`" + i.path + "`'s " + i.mechanism + " linkage (" + parameters(i, g.track) +
-                      ") reaches steering inputs " + number(fit.low) + " to " + number(fit.high) +
+                      ") reaches steering inputs " + figure(fit.low) + " to " + figure(fit.high) +
                       " rad (its dead points; inputs are clamped there); " + held);
   }
   Element* equality = root.child("equality");
