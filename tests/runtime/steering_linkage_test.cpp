@@ -285,6 +285,53 @@ TEST(KinematicSteering, WheelsFollowTheLinkageOverItsWholeRange) {
   }
 }
 
+// Every parameter as the drawing has it: the tie rods sloping, a shorter steering arm, a longer rack, other
+// knuckles, a reversed gear; the wheels against the drawing's linkage at both ends of the reach and between.
+TEST(KinematicSteering, EveryParameterActsAsTheDrawingSays) {
+  struct Case {
+    int mechanism;
+    std::vector<std::pair<std::string, double>> set;
+  };
+  const std::vector<Case> cases = {
+      {0, {{"knuckle_length", 0.2}, {"knuckle_angle", -1.9}}},
+      {1, {{"initial_angle_right_tie_rod", 0.2}}},
+      {1, {{"steering_column_distance", 0.5}, {"gear", -1.5}}},
+      {2, {{"initial_angle_right_tie_rod", -0.15}, {"rack_length", 0.4}}},
+      {2, {{"steering_column_distance", 0.6}, {"knuckle_length", 0.18}, {"knuckle_angle", -2.0}}},
+  };
+  for (const Case& c : cases) {
+    Params p;
+    p.mechanism = mj::SteeringMechanism(c.mechanism);
+    p.set = c.set;
+    std::string trace = kNames[c.mechanism];
+    for (const auto& [name, value] : c.set) trace += " " + name + " " + num(value);
+    SCOPED_TRACE(trace);
+    const mj::SteeringLinkage fit = mj::steering_linkage(p.geometry(1.6));
+    ASSERT_TRUE(fit.problem.empty()) << fit.problem;
+    const Drawing drawing(p, 1.6);
+    const openplx::testing::ScratchDir dir;
+    rt::Simulation sim = load(dir, 1.6, p, 0.002);
+    rt::Input in = sim.input("steering.interaction.steering_angle_input");
+    for (const double f : {-1.0, -0.5, 0.5, 1.0}) {
+      const double input = f < 0 ? -f * fit.low : f * fit.high;
+      in.set(input);
+      sim.advance(1.0);
+      SCOPED_TRACE("input " + num(input));
+      EXPECT_NEAR(sim.output("steering.interaction.steering_angle_output").real(), input, 1e-6);
+      const double left = joint(sim, "left_suspension.mate.steering");
+      const double right = joint(sim, "right_suspension.mate.steering");
+      EXPECT_NEAR(left, drawing.angles(input).first, fit.input_to_left.max_error + 1e-5);
+      const double at = c.mechanism == 0 ? left : drawing.input_for(left, fit.low, fit.high);
+      EXPECT_NEAR(right, drawing.angles(at).second, fit.linkage.max_error + 1e-5);
+      if (std::abs(f) == 0.5) {  // within q's fitted part: its own error
+        EXPECT_LE(fit.fitted_low, input);
+        EXPECT_GE(fit.fitted_high, input);
+        EXPECT_NEAR(right, drawing.angles(at).second, fit.linkage_fitted + 1e-5);
+      }
+    }
+  }
+}
+
 // gear turns the column: gear 2 at θ puts the wheels where gear 1 does at 2θ; the output still reads θ.
 TEST(KinematicSteering, GearTurnsTheColumn) {
   for (const int mechanism : {1, 2}) {
