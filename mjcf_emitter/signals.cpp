@@ -199,11 +199,16 @@ void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) 
       return mapped(b, Quantity::Ctrl, MjObject::Actuator, element);
     }
   } else if (auto sp = springs_.find(k); sp != springs_.end()) {
+    // The runtime's spring row (springs.cpp) reads the rest and writes the force.
     if (any_of(stem, {"Angle", "Position1D"})) {  // the rest, also readable
       b.initial = actuator_ctrl_.at(k).second;
+      b.runtime = true;
       return mapped(b, Quantity::Ctrl, MjObject::Actuator, sp->second);
     }
-    if (effort && !b.input) return mapped(b, Quantity::ActuatorForce, MjObject::Actuator, sp->second);
+    if (effort && !b.input) {
+      b.runtime = true;
+      return mapped(b, Quantity::ActuatorForce, MjObject::Actuator, sp->second);
+    }
   } else if (auto a = actuator_ctrl_.find(k); a != actuator_ctrl_.end()) {  // a force or torque motor
     if (range) return mapped(b, Quantity::ForceRange, MjObject::Actuator, element);
     if (effort && !b.input) return mapped(b, Quantity::ActuatorForce, MjObject::Actuator, element);
