@@ -1,11 +1,22 @@
-// Lowering pass, signals of drivetrain parts beyond gears, clutches and brakes: gearboxes (gear number,
-// ratio), flexible and viscous gears (tendon torque), differential lock-up, torque converters and engines.
+// Lowering pass, signals of shafts and of drivetrain parts beyond gears, clutches and brakes: gearboxes (gear
+// number, ratio), flexible and viscous gears (tendon torque), differential lock-up, torque converters and
+// engines.
 #include "mjcf_emitter/lowering.h"
 
 namespace openplx::mjcf {
 
 namespace {
 constexpr double kRpmPerRadPerSecond = 60.0 / (2 * 3.14159265358979323846);
+}
+
+// A shaft's angle and speed outputs: its joint's, or for a folded shaft the joint of its group less that
+// joint's initial value (JointPosition's polynomial {qpos0, 1}). False, `b` untouched: not one of these.
+bool Lowering::bind_shaft(SignalBinding& b, std::string_view stem, int shaft) {
+  if (b.input || !any_of(stem, {"Angle", "AngularVelocity1D"})) return false;
+  const bool angle = stem == "Angle";
+  mapped(b, angle ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint, shaft_joints_[shaft]);
+  if (angle && shaft_offsets_[shaft] != 0) b.initial_vector = {shaft_offsets_[shaft], 1.0};
+  return true;
 }
 
 // False, `b` untouched: not one of these parts' signals (bind_coupling goes on).

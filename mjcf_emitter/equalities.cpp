@@ -129,10 +129,11 @@ std::optional<MateCompliance> Lowering::compliance(const sn::Mate& mate) {
 }
 
 // Rigid equalities (loop closures, drivetrain couplings, mimic joints) as stiff as MuJoCo holds them: time
-// constant 2 h (the shortest MuJoCo's solver keeps stable), critical damping, impedance 0.9999 (the largest
-// it accepts). An error then decays within about two steps, and a constant load leaves a residual of order
-// (1 - d) of the unconstrained motion per step (README "Couplings"). Flexible ones are set by
-// finish_with_draft.
+// constant 2 h (the shortest refsafe keeps), damping ratio 1/2, impedance 0.9999 (the largest it accepts).
+// That gives stiffness 1/h^2 and damping 1/h, which under semi-implicit Euler is deadbeat: an error in
+// position and velocity is gone after two steps (critical damping, ratio 1, keeps 3/4 of a position error per
+// step). What remains is the impedance's leak, (1 - d) of what the row carries in each step (README
+// "Couplings"). Flexible ones are set by finish_with_draft.
 void Lowering::stiffen_equalities(Element& root) {
   Element* equality = root.child("equality");
   if (!equality) return;
@@ -140,10 +141,12 @@ void Lowering::stiffen_equalities(Element& root) {
   for (const PendingSoftEquality& p : soft_equalities_) soft.insert(p.equality);
   for (const std::unique_ptr<Element>& e : equality->children()) {
     if (soft.count(e.get())) continue;
-    e->set("solref", rigid_solref()).set("solimp", rigid_solimp());
+    e->set("solref", number(2 * options_.timestep) + " 0.5").set("solimp", rigid_solimp());
   }
 }
 
+// Rigid friction rows (motors, clutches, brakes): a friction row has no position error, so only its damping
+// 1/h counts, which makes its velocity deadbeat.
 std::string Lowering::rigid_solref() const {
   return number(2 * options_.timestep) + " 1";
 }

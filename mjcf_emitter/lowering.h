@@ -182,6 +182,9 @@ class Lowering {
 
   // ------------------------------------------------------------------------------- drivetrain.cpp
   void emit_drivetrain(Element& root);
+  void fold_rigid_shafts();
+  Element* actuator_joint(const sn::DriveCoupling& c);
+  bool joins_one_joint(const sn::DriveCoupling& c) const;
   void emit_shaft_motor(Element& root, const sn::Interaction1D& i);
   void emit_friction_coupling(Element& equality, Element& tendons, const sn::DriveCoupling& c);
   double drivetrain_inertia(int start);
@@ -204,6 +207,7 @@ class Lowering {
   void bind_enabled(SignalBinding& b, int k);
   void bind_coupling(SignalBinding& b, std::string_view stem, int k);
   bool bind_drive_part(SignalBinding& b, std::string_view stem, int k);
+  bool bind_shaft(SignalBinding& b, std::string_view stem, int shaft);
   void bind_mate(SignalBinding& b, std::string_view stem, int m);
   void bind_body(SignalBinding& b, std::string_view stem, int n);
   void bind_connector(SignalBinding& b, std::string_view stem, int c);
@@ -273,7 +277,10 @@ class Lowering {
   };
   std::vector<DriveEdge> drive_edges_;
   std::vector<PendingSoftEquality> soft_equalities_;
-  std::vector<std::string> shaft_joints_;  // per shaft: its MuJoCo joint
+  std::vector<std::string> shaft_joints_;  // per shaft: its MuJoCo joint (folded: the joint of its group)
+  std::vector<double> shaft_offsets_;      // per shaft: that joint's qpos0 (the shaft starts at 0)
+  std::vector<int> shaft_group_;           // per shaft: the first shaft of its rigid 1:1 group
+  std::map<int, Element*> group_joint_;    // rigid group -> the 3-D joint it is folded into
   Element* world_ = nullptr;
   Element* sensors_ = nullptr;
   std::set<int> mocap_;

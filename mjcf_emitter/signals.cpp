@@ -144,10 +144,7 @@ void Lowering::bind(const sn::Signal& s, SignalBinding& b) {
     case Source::Body:
       return bind_body(b, stem, s.source);
     case Source::Shaft:
-      if (!b.input && any_of(stem, {"Angle", "AngularVelocity1D"})) {
-        return mapped(b, stem == "Angle" ? Quantity::JointPosition : Quantity::JointVelocity, MjObject::Joint,
-                      shaft_joints_[s.source]);
-      }
+      if (bind_shaft(b, stem, s.source)) return;
       break;
     case Source::Connector:
       return bind_connector(b, stem, s.source);
