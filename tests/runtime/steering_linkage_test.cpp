@@ -1,7 +1,8 @@
 // Kinematic steering (Vehicles.Steering.Kinematic.Ackermann, BellCrank, RackAndPinion) with AGX's geometry:
 // every length a fraction of the track. Built as a user writes them (a static chassis, two steered wheels
 // on spring suspensions) on tracks from 0.1 m to 2 m at dt 0.002 and 0.02: AGX's steering test (input 0.5
-// gives the steering angle output 0.5 within 1e-6 after 1 s) on each; the wheels against the linkage
+// gives the steering angle output 0.5 within 1e-6 after 1 s) on each, and on a small car standing on its
+// four wheels (the tyres loading the steering); the wheels against the linkage
 // recomputed here in closed form from AGXUnity's drawing (independently of the emitter: circle
 // intersections followed step by step from straight ahead) over the whole input range, within the fit
 // errors the emitter reports; inputs past the linkage's reach clamped to it; an impossible geometry warned
@@ -233,6 +234,91 @@ TEST(KinematicSteering, EveryMechanismReachesHalfARadianOnEveryTrack) {
         EXPECT_NEAR(out.real(), 0.5, 1e-6);
         EXPECT_GT(joint(sim, "left_suspension.mate.steering"), 0.3);  // a left turn
       }
+    }
+  }
+}
+
+// AGX's steering test on a small car standing on its four wheels (0.12 m track, a 2 kg chassis on
+// redirected connectors, 0.1 kg wheels on the ground): under the tyres' loads the output still reads 0.5
+// within 1e-6 after 1 s, at dt 0.002 and 0.02, and the car stays on its wheels.
+TEST(KinematicSteering, ACarOnItsWheelsReachesHalfARadian) {
+  for (int mechanism = 0; mechanism < 3; ++mechanism) {
+    for (const double dt : kSteps) {
+      SCOPED_TRACE(std::string(kNames[mechanism]) + " dt " + num(dt));
+      const openplx::testing::ScratchDir dir;
+      std::ofstream(dir / "car.openplx") << "Chassis is Physics3D.Bodies.RigidBody:\n"
+                                            "    inertia.mass: 2\n"
+                                            "    box is Physics3D.Geometries.Box:\n"
+                                            "        size: {0.3, 0.06, 0.03}\n"
+                                            "Wheel is Vehicles.Wheels.Base:\n"
+                                            "    rim becomes Vehicles.Wheels.Rim:\n"
+                                            "        radius: 0.03\n"
+                                            "        width: 0.02\n"
+                                            "        rotational_axis: Math.Vec3.Y_AXIS()\n"
+                                            "        inertia.mass: 0.1\n"
+                                            "Attachment is Physics3D.Interactions.RedirectedMateConnector:\n"
+                                            "    main_axis: Math.Vec3.Y_AXIS()\n"
+                                            "    normal: Math.Vec3.Z_AXIS()\n"
+                                            "Corner is Vehicles.Suspensions.SingleMate.LinearSpringDamper:\n"
+                                            "    mate.spring_constant.stiffness: 400\n"
+                                            "    mate.spring_damping.damping_constant: 15\n"
+                                            "Car is Physics3D.System:\n"
+                                            "    ground is Physics3D.Bodies.RigidBody:\n"
+                                            "        is_dynamic: false\n"
+                                            "        kinematics.local_transform.position: {0, 0, -0.06}\n"
+                                            "        floor is Physics3D.Geometries.Box:\n"
+                                            "            size: {10, 10, 0.02}\n"
+                                            "    chassis is Chassis\n"
+                                            "    fl is Attachment:\n"
+                                            "        redirected_parent: chassis\n"
+                                            "        position: {0.1, 0.06, -0.015}\n"
+                                            "    fr is Attachment:\n"
+                                            "        redirected_parent: chassis\n"
+                                            "        position: {0.1, -0.06, -0.015}\n"
+                                            "    rl is Attachment:\n"
+                                            "        redirected_parent: chassis\n"
+                                            "        position: {-0.1, 0.06, -0.015}\n"
+                                            "    rr is Attachment:\n"
+                                            "        redirected_parent: chassis\n"
+                                            "        position: {-0.1, -0.06, -0.015}\n"
+                                            "    front_left is Wheel\n"
+                                            "    front_right is Wheel\n"
+                                            "    rear_left is Wheel\n"
+                                            "    rear_right is Wheel\n"
+                                            "    left_suspension is Corner:\n"
+                                            "        with Vehicles.Suspensions.Properties.Steering\n"
+                                            "        chassis_connector: fl\n"
+                                            "        attachment_connector: front_left.connector\n"
+                                            "    right_suspension is Corner:\n"
+                                            "        with Vehicles.Suspensions.Properties.Steering\n"
+                                            "        chassis_connector: fr\n"
+                                            "        attachment_connector: front_right.connector\n"
+                                            "    rear_left_suspension is Corner:\n"
+                                            "        chassis_connector: rl\n"
+                                            "        attachment_connector: rear_left.connector\n"
+                                            "    rear_right_suspension is Corner:\n"
+                                            "        chassis_connector: rr\n"
+                                            "        attachment_connector: rear_right.connector\n"
+                                            "    steering is Vehicles.Steering.Kinematic."
+                                         << kNames[mechanism]
+                                         << ":\n"
+                                            "        left_suspension: left_suspension\n"
+                                            "        right_suspension: right_suspension\n"
+                                            "    chassis_position is Physics3D.Signals.Position3DOutput:\n"
+                                            "        source: chassis\n";
+      rt::LoadOptions options;
+      options.timestep = dt;
+      rt::Simulation sim = rt::Simulation::load((dir / "car.openplx").string(), options);
+      sim.advance(0.5);  // settles on its wheels
+      const double standing = sim.output("chassis_position").vec3().z();
+      // On its wheels (0.03 m, on the floor's top at -0.05, 0.015 m below the chassis' centre): -0.005, less
+      // the springs' sag (held rigid at dt 0.02, warned).
+      EXPECT_LT(standing, -0.004);
+      EXPECT_GT(standing, -0.03);
+      sim.input("steering.interaction.steering_angle_input").set(0.5);
+      sim.advance(1.0);
+      EXPECT_NEAR(sim.output("steering.interaction.steering_angle_output").real(), 0.5, 1e-6);
+      EXPECT_NEAR(sim.output("chassis_position").vec3().z(), standing, 2e-3);
     }
   }
 }
