@@ -223,4 +223,44 @@ TEST(RigidCoupling, GearBoxSettlesOnEachGearWithinATenthOfASecond) {
   }
 }
 
+// One shaft driving two hinges: the shaft folds into the first, the second follows the first by a rigid
+// equality (within its leak, 3e-4 after the first step); 0.1 s on both turn at the motor's 1 rad/s.
+TEST(RigidCoupling, SecondJointOnAShaftFollowsTheFirst) {
+  const std::string rod =
+      "Rod is Physics3D.Bodies.RigidBody:\n"
+      "    inertia.mass: 10\n"
+      "    geometry is Physics3D.Geometries.Box:\n"
+      "        size: Math.Vec3.from_xyz(0.1, 0.1, 1)\n"
+      "    end is Physics3D.Interactions.MateConnector:\n"
+      "        main_axis: Math.Vec3.Y_AXIS()\n"
+      "        normal: Math.Vec3.Z_AXIS()\n";
+  std::string scene =
+      "Scene is Physics3D.System:\n    shaft is DriveTrain.Shaft\n"
+      "    motor is Physics1D.Interactions.RotationalVelocityMotor:\n"
+      "        connectors: [shaft.input]\n";
+  for (const std::string k : {"1", "2"}) {
+    scene += "    pivot" + k + " is Physics3D.Interactions.MateConnector:\n" +
+             "        main_axis: Math.Vec3.Y_AXIS()\n        normal: Math.Vec3.X_AXIS()\n" +
+             "        position.y: " + (k == "1" ? "0.2" : "-0.2") + "\n    rod" + k + " is Rod\n    hinge" +
+             k + " is Physics3D.Interactions.Hinge:\n        connectors: [rod" + k + ".end, pivot" + k +
+             "]\n" + "    actuator" + k +
+             " is DriveTrain.HingeActuator:\n        connector_1d: shaft.output\n" +
+             "        mate_3d: hinge" + k + "\n";
+  }
+  for (const double h : {0.002, 0.02}) {
+    SCOPED_TRACE("h=" + std::to_string(h));
+    const openplx::testing::ScratchDir dir;
+    rt::Simulation sim = load(dir, rod + scene, h);
+    EXPECT_EQ(sim.model()->neq, 1);
+    rt::Output first = sim.output("hinge1.angular_velocity_output");
+    rt::Output second = sim.output("hinge2.angular_velocity_output");
+    sim.step();
+    EXPECT_NEAR(first.real(), joint_speed(sim, "motor/reference"), 1e-9);
+    EXPECT_NEAR(second.real(), 1.0, 1e-3);
+    sim.advance(0.1);
+    EXPECT_NEAR(first.real(), 1.0, 1e-6);
+    EXPECT_NEAR(second.real(), 1.0, 1e-6);
+  }
+}
+
 }  // namespace
