@@ -642,6 +642,15 @@ ModelInfo* Program::make_trait_extension(ModelInfo* base, std::vector<ModelInfo*
   return &model;
 }
 
+void Program::report_agx_annotations(const std::function<bool(const ModelInfo*)>& held) {
+  for (const AgxAnnotation& a : agx_annotations_) {
+    if (!held(a.model)) continue;
+    sink_.report(DiagCode::AgxAnnotation, a.member->range,
+                 "AGX annotation `." + std::string(a.member->path.parts[0].text) +
+                     "` has no MuJoCo counterpart; it was ignored");
+  }
+}
+
 void Program::flatten(ModelInfo* model, const std::vector<Member>& members,
                       std::vector<std::string_view>& prefix) {
   auto add = [&](Entry::Kind kind, const Member& m, std::vector<std::string_view> path) {
@@ -690,12 +699,10 @@ void Program::flatten(ModelInfo* model, const std::vector<Member>& members,
         }
         break;
       case MemberKind::Annotation: {
-        // AGX's own settings (`.agx_*`) mean nothing to MuJoCo: accepted, and listed where a user wrote them.
-        if (m.path.parts[0].text.starts_with("agx_") && !model->doc->bundle) {
-          sink_.report(DiagCode::AgxAnnotation, m.range,
-                       "AGX annotation `." + std::string(m.path.parts[0].text) +
-                           "` has no MuJoCo counterpart; it was ignored");
-        }
+        // AGX's own settings (`.agx_*`) mean nothing to MuJoCo: accepted, and listed where a user wrote them
+        // once the converted root is known (report_agx_annotations).
+        if (m.path.parts[0].text.starts_with("agx_") && !model->doc->bundle)
+          agx_annotations_.push_back({model, &m});
         std::vector<std::string_view> path = extended(m.path);
         if (prefix.empty()) {
           model->annotations[std::string(m.path.parts[0].text)] = *m.value;

@@ -186,6 +186,9 @@ class Program {
   // Closest names to `name` among `candidates` (for "did you mean").
   static std::string suggestion(std::string_view name, const std::vector<std::string>& candidates);
   std::vector<std::string> names_visible_from(DocumentInfo* doc);
+  // Lists the AGX annotations (`.agx_*`) the user wrote in the models `held` says the converted root holds
+  // (its own, its parts' and the models they extend); those of models it does not use are not its concern.
+  void report_agx_annotations(const std::function<bool(const ModelInfo*)>& held);
 
  private:
   // Lists the folder and parses its files, or indexes those that can wait; `eager` parses every one.
@@ -234,6 +237,11 @@ class Program {
   std::map<std::string, DocumentInfo*> loaded_files_;         // absolute path -> document
   std::deque<LazyFile> lazy_files_;
   std::unordered_map<std::string, LazyFile*> lazy_by_path_;  // absolute path -> file waiting for a lookup
+  struct AgxAnnotation {
+    const ModelInfo* model;
+    const Member* member;
+  };
+  std::vector<AgxAnnotation> agx_annotations_;  // in the user's files, for report_agx_annotations
 };
 
 }  // namespace openplx::frontend

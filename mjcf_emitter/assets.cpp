@@ -8,6 +8,37 @@
 
 namespace openplx::mjcf {
 
+namespace {
+
+// Whether a material's metallic or roughness factor sets its MJCF attribute. A map scaled by it is dropped
+// (MuJoCo has no slot for it): the factor alone keeps the material's look only where the user wrote it; the
+// trait's default (1, "the map decides") alone would make a mirror (metallic 1) or a matte surface
+// (roughness 1), so the attribute is left at MuJoCo's default.
+bool use_factor(const sn::VisualMaterial& m, const char* map, bool written) {
+  if (written) return true;
+  for (const sn::FileTexture& t : m.file_textures)
+    if (t.attribute == map) return false;
+  for (const sn::InlineTexture& t : m.inline_textures)
+    if (t.attribute == map) return false;
+  return true;
+}
+
+// What dropping a map leaves of the material's look, for the warning.
+std::string dropped_map_effect(const sn::VisualMaterial& m, const std::string& map) {
+  if (map == "base_color_map") return " and the material keeps its colour";
+  if (map == "metallic_map")
+    return m.metallic_written ? ", and `metallic` alone sets the reflectance"
+                              : ", and the reflectance is MuJoCo's default (0), not the Metallic trait's "
+                                "default factor 1 without its map (a mirror)";
+  if (map == "roughness_map")
+    return m.roughness_written ? ", and `roughness` alone sets the shininess"
+                               : ", and the shininess is MuJoCo's default (0.5), not 1 minus the Roughness "
+                                 "trait's default factor 1 without its map";
+  return "";
+}
+
+}  // namespace
+
 // Visuals materials as MJCF materials: base colour tint -> rgba, 1 - roughness -> shininess (MuJoCo's is
 // a glossiness), metallic -> reflectance, a base colour image -> a 2-D <texture> the material repeats
 // scale_u x scale_v times.
@@ -19,55 +50,59 @@ void Lowering::emit_visual_materials() {
       const Eigen::Vector4d& c = *m.tint;
       material.set("rgba", number(c[0]) + " " + number(c[1]) + " " + number(c[2]) + " " + number(c[3]));
     }
-    if (m.roughness) material.set("shininess", std::clamp(1.0 - *m.roughness, 0.0, 1.0));
-    if (m.metallic) material.set("reflectance", std::clamp(*m.metallic, 0.0, 1.0));
+    if (m.roughness && use_factor(m, "roughness_map", m.roughness_written))
+      material.set("shininess", std::clamp(1.0 - *m.roughness, 0.0, 1.0));
+    if (m.metallic && use_factor(m, "metallic_map", m.metallic_written))
+      material.set("reflectance", std::clamp(*m.metallic, 0.0, 1.0));
     for (const sn::FileTexture& t : m.file_textures) emit_texture(material, m, t);
     // Texture maps carry pixels inline (base64); MuJoCo 2.2.2 reads textures only from image files.
     for (const sn::InlineTexture& texture : m.inline_textures) {
-      warn(texture.where, "`" + m.path + "." + texture.attribute +
-                              "` is an inline texture, which MuJoCo 2.2.2 cannot read (it takes image "
-                              "files); the material keeps its colour only");
+      warn(texture.map.where, "`" + texture.map.name +
+                                  "` is an inline texture, which MuJoCo 2.2.2 cannot read (it takes image "
+                                  "files); it was left out" +
+                                  dropped_map_effect(m, texture.attribute));
     }
   }
 }
 
 // A texture map from an image file. MuJoCo 2.2.2 materials take one texture, shown as the surface colour
 // (modulated by rgba), repeated and linearly filtered with mipmaps: other maps, channel swizzles, offsets,
-// other wrap and filter modes are warned at the texture, with what was done instead.
+// other wrap and filter modes are warned each where the user wrote it, with what was done instead.
 void Lowering::emit_texture(Element& material, const sn::VisualMaterial& m, const sn::FileTexture& t) {
   namespace fs = std::filesystem;
-  const std::string attribute = m.path + "." + t.attribute;
-  const std::string where = "`" + attribute + "`";
+  const std::string map = "`" + t.map.name + "`";
   if (t.attribute != "base_color_map") {
-    warn(t.where, where +
-                      " is a texture MuJoCo 2.2.2 materials have no slot for (they take one colour "
-                      "texture); it was left out");
+    warn(t.map.where, map +
+                          " is a texture MuJoCo 2.2.2 materials have no slot for (they take one colour "
+                          "texture); it was left out" +
+                          dropped_map_effect(m, t.attribute));
     return;
   }
   std::error_code ec;
   if (!fs::is_regular_file(t.file, ec)) {
-    sink_.report(fe::DiagCode::MjcfMissingAsset, t.where,
-                 "texture file " + t.file + " of " + where + " not found");
+    sink_.report(fe::DiagCode::MjcfMissingAsset, t.map.where,
+                 "texture file " + t.file + " of " + map + " not found");
     return;
   }
   // Only what the material looks like depends on it: a file MuJoCo could not read is left out, warned.
   if (const std::string problem = png_file_problem(t.file); !problem.empty()) {
-    warn(t.where, "texture file " + t.file + " of " + where + " is no PNG image MuJoCo can read (" + problem +
-                      "); the texture was left out and the material keeps its colour");
+    warn(t.map.where, "texture file " + t.file + " of " + map + " is no PNG image MuJoCo can read (" +
+                          problem + "); the texture was left out and the material keeps its colour");
     return;
   }
   if (!t.swizzle.empty())
-    warn(t.where, "`" + attribute + ".swizzle` (\"" + t.swizzle +
-                      "\") has no MuJoCo counterpart; all channels were used");
+    warn(t.swizzle_at.where, "`" + t.swizzle_at.name + "` (\"" + t.swizzle +
+                                 "\") has no MuJoCo counterpart; all channels of " + map + " were used");
   if (t.filter_mode != 1)
-    warn(t.where, "`" + attribute +
-                      ".filter_mode` has no MuJoCo counterpart (textures are filtered linearly, "
-                      "mipmapped); linear filtering was used");
+    warn(t.filter_at.where, "`" + t.filter_at.name +
+                                "` has no MuJoCo counterpart (textures are filtered linearly, mipmapped); " +
+                                map + " is filtered linearly");
   if (t.wrap_mode != 0)
-    warn(t.where, "`" + attribute + ".wrap_mode` has no MuJoCo counterpart (textures repeat); it repeats");
+    warn(t.wrap_at.where,
+         "`" + t.wrap_at.name + "` has no MuJoCo counterpart (textures repeat); " + map + " repeats");
   if (t.offset_u != 0 || t.offset_v != 0)
-    warn(t.where,
-         "`" + attribute + ".offset_u/offset_v` have no MuJoCo counterpart; the texture starts at 0");
+    warn(t.offset_at.where, "`" + t.offset_at.name + "` has no MuJoCo counterpart (nor its other offset); " +
+                                map + " starts at 0");
   std::string file = t.file;
   if (!options_.output_dir.empty())
     file = fs::path(t.file).lexically_relative(options_.output_dir).generic_string();

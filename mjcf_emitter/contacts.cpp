@@ -60,13 +60,11 @@ void Lowering::emit_contact_pairs(Element& root) {
   for (const sn::ContactModel& cm : view_.contact_models) {
     if (!cm.enabled) continue;
     const double mu = cm.friction;
-    for (const auto& [restitution, value] : {std::pair{"normal_restitution", cm.normal_restitution},
-                                             {"tangential_restitution", cm.tangential_restitution}}) {
-      if (value != 0.0) {
-        warn(cm.where, "`" + cm.path + "." + restitution +
-                           "` has no MuJoCo 2.2.2 parameter; its contacts are "
-                           "emitted without restitution");
-      }
+    for (const sn::WrittenValue* restitution : {&cm.normal_restitution_at, &cm.tangential_restitution_at}) {
+      if (!restitution->name.empty())  // only a restitution that is not 0 has a place
+        warn(restitution->where,
+             "`" + restitution->name +
+                 "` has no MuJoCo 2.2.2 parameter; its contacts are emitted without restitution");
     }
     size_t pairs = 0;
     for (const sn::Geometry& a : view_.geometries) {

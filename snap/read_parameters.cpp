@@ -49,7 +49,40 @@ MateFriction read_friction(AttributeReader& in, fe::ObjectId mate, const char* a
   return f;
 }
 
+bool in_bundle(const fe::ModelInfo* m) {
+  return m && m->doc && m->doc->bundle;
+}
+
+// Whether `object.name` holds a value assigned to it, not a declaration's default.
+bool assigned(AttributeReader& in, fe::ObjectId object, std::string_view name) {
+  const fe::Slot* slot = in.graph().at(object).find(name);
+  return slot && slot->explicit_value;
+}
+
 }  // namespace
+
+WrittenValue written_value(AttributeReader& in, fe::ObjectId object, std::string_view name) {
+  const fe::ObjectGraph& g = in.graph();
+  const fe::ModelInfo* root = g.root == fe::kNoObject ? nullptr : g.at(g.root).type;
+  fe::ObjectId at = object;
+  std::string_view attribute = name;
+  std::string below;  // the path from the assigned attribute down to `name` (`.y` of a vector written whole)
+  for (int depth = 0; depth < 8; ++depth) {
+    const fe::Slot* slot = g.at(at).find(attribute);
+    const fe::Entry* entry = slot ? slot->binding.entry : nullptr;
+    if (entry && entry->member && slot->binding.model && !in_bundle(slot->binding.model)) {
+      std::string written = slot->binding.model == root ? "" : slot->binding.model->qualified;
+      for (std::string_view part : entry->path) (written += written.empty() ? "" : ".") += part;
+      return {written + below, entry->member->range};
+    }
+    const fe::Object& o = g.at(at);
+    if (o.owner == fe::kNoObject) break;
+    below = "." + std::string(attribute) + below;
+    attribute = o.name;
+    at = o.owner;
+  }
+  return {g.path(object) + "." + std::string(name), source_of(g, object)};
+}
 
 void read_mate_parameters(AttributeReader& in, fe::ObjectId id, Mate& mate) {
   mate.enabled = in.boolean(id, "enabled").value_or(true);
@@ -137,6 +170,8 @@ VisualMaterial read_visual_material(AttributeReader& in, fe::ObjectId id) {
                              in.real(tint, "a", 1));
   m.roughness = in.number(id, "roughness");
   m.metallic = in.number(id, "metallic");
+  m.roughness_written = m.roughness && assigned(in, id, "roughness");
+  m.metallic_written = m.metallic && assigned(in, id, "metallic");
   for (const char* map : {"base_color_map", "roughness_map", "metallic_map", "alpha_map",
                           "ambient_occlusion_map", "normal_map"}) {
     const fe::ObjectId texture = in.object(id, map);
@@ -152,13 +187,19 @@ VisualMaterial read_visual_material(AttributeReader& in, fe::ObjectId id) {
       t.wrap_mode = static_cast<int>(in.real(texture, "wrap_mode", 0.0));
       t.filter_mode = static_cast<int>(in.real(texture, "filter_mode", 1.0));
       t.swizzle = in.string(texture, "swizzle").value_or("");
-      t.where = source_of(in.graph(), texture);
+      t.map = written_value(in, id, map);
+      // Each setting where it was written (the texture may be a declaration of its own, shared).
+      if (!t.swizzle.empty()) t.swizzle_at = written_value(in, texture, "swizzle");
+      if (t.wrap_mode != 0) t.wrap_at = written_value(in, texture, "wrap_mode");
+      if (t.filter_mode != 1) t.filter_at = written_value(in, texture, "filter_mode");
+      if (t.offset_u != 0 || t.offset_v != 0)
+        t.offset_at = written_value(in, texture, t.offset_u != 0 ? "offset_u" : "offset_v");
       m.file_textures.push_back(std::move(t));
       continue;
     }
     const fe::ObjectId data = in.object(texture, "data");
     if (data != fe::kNoObject && in.real(data, "width") > 0 && in.real(data, "height") > 0)
-      m.inline_textures.push_back({map, source_of(in.graph(), texture)});
+      m.inline_textures.push_back({map, written_value(in, id, map)});
   }
   return m;
 }
@@ -172,6 +213,10 @@ void read_contact_parameters(AttributeReader& in, fe::ObjectId id, ContactModel&
   }
   model.normal_restitution = in.real(id, "normal_restitution");
   model.tangential_restitution = in.real(id, "tangential_restitution");
+  if (model.normal_restitution != 0)
+    model.normal_restitution_at = written_value(in, id, "normal_restitution");
+  if (model.tangential_restitution != 0)
+    model.tangential_restitution_at = written_value(in, id, "tangential_restitution");
 }
 
 Gravity read_gravity(AttributeReader& in, fe::ObjectId root) {

@@ -13,6 +13,12 @@ void read_mate_parameters(AttributeReader& in, frontend::ObjectId id, Mate& mate
 // Ranges, springs and motors: what each kind's mapping reads (call after its kind is final).
 void read_interaction_parameters(AttributeReader& in, frontend::ObjectId id, Interaction1D& interaction);
 
+// Where the user wrote `object.name`'s value and what to call it there: the assignment of it, or of an
+// object holding it (a vector written whole), named by the declaration whose text holds that assignment
+// (`Paint.metallic_map` for every instance of Paint; the converted root's own ones by their path). A value
+// no user wrote is named by the instance's path, at the user's declaration of the object.
+WrittenValue written_value(AttributeReader& in, frontend::ObjectId object, std::string_view name);
+
 // A Visuals.Materials.Material: tint, roughness, metallic, and which texture maps carry inline pixels.
 VisualMaterial read_visual_material(AttributeReader& in, frontend::ObjectId id);
 

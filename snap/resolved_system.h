@@ -85,10 +85,17 @@ struct Material {
   frontend::SourceRange where;
 };
 
+// Where the user wrote a value, and its name there: a value assigned in a declaration that several instances
+// share is named by that declaration (`Paint.metallic_map`), the same for all of them (read_parameters.h).
+struct WrittenValue {
+  std::string name;
+  frontend::SourceRange where;
+};
+
 // An inline texture map of a visual material (pixels in the model, not an image file).
 struct InlineTexture {
   std::string attribute;  // base_color_map, roughness_map, ...
-  frontend::SourceRange where;
+  WrittenValue map;       // the material's assignment of it
 };
 
 // A texture map read from an image file (`import @"x.png"`), with its sampling as the model gives it.
@@ -98,7 +105,8 @@ struct FileTexture {
   double scale_u = 1, scale_v = 1, offset_u = 0, offset_v = 0;
   int wrap_mode = 0, filter_mode = 1;  // Visuals.Textures.WrapMode / FilterMode (Repeat, Linear)
   std::string swizzle;                 // "" when none
-  frontend::SourceRange where;
+  WrittenValue map;                    // the material's assignment of it
+  WrittenValue swizzle_at, wrap_at, filter_at, offset_at;  // the texture's own settings
 };
 
 // Visuals.Materials.Material.
@@ -107,6 +115,7 @@ struct VisualMaterial {
   std::string path;
   std::optional<Eigen::Vector4d> tint;  // base_color_tint r, g, b, a (a component that is not a number: 1)
   std::optional<double> roughness, metallic;
+  bool roughness_written = false, metallic_written = false;  // assigned, not the traits' defaults
   std::vector<InlineTexture> inline_textures;  // maps that carry pixels with a positive width and height
   std::vector<FileTexture> file_textures;      // maps read from image files
   frontend::SourceRange where;
@@ -319,6 +328,7 @@ struct ContactModel {
   bool enabled = true;
   double friction = 1.0;  // its friction model's coefficient (1 when none)
   double normal_restitution = 0, tangential_restitution = 0;
+  WrittenValue normal_restitution_at, tangential_restitution_at;
   frontend::SourceRange where;
 };
 

@@ -93,17 +93,28 @@ TEST(Textures, WhatMuJoCoLacksIsWarnedAtTheUsersLine) {
                                          "        metallic_map: Red\n"));
   ASSERT_EQ(c.status, 0) << c.errors;
   const std::string file = (dir / "scene.openplx").string();
+  // Each setting at its own assignment in the texture's declaration, named by it (`Point`, which any
+  // material may use), with the map it samples; the metallic map at the material's assignment of it.
   for (const std::string& expected :
-       {file + ":2:1: warning: `paint.base_color_map.swizzle` (\"r\") has no MuJoCo counterpart",
-        file + ":2:1: warning: `paint.base_color_map.filter_mode` has no MuJoCo counterpart",
-        file + ":2:1: warning: `paint.base_color_map.wrap_mode` has no MuJoCo counterpart",
-        file + ":6:1: warning: `paint.metallic_map` is a texture MuJoCo 2.2.2 materials have no slot for"}) {
+       {file + ":5:5: warning: `Point.swizzle` (\"r\") has no MuJoCo counterpart; all channels of "
+               "`paint.base_color_map` were used",
+        file +
+            ":3:5: warning: `Point.filter_mode` has no MuJoCo counterpart (textures are filtered linearly, "
+            "mipmapped); `paint.base_color_map` is filtered linearly",
+        file + ":4:5: warning: `Point.wrap_mode` has no MuJoCo counterpart (textures repeat); "
+               "`paint.base_color_map` repeats",
+        file + ":10:9: warning: `paint.metallic_map` is a texture MuJoCo 2.2.2 materials have no slot for"}) {
     EXPECT_NE(c.errors.find(expected), std::string::npos) << expected << "\n" << c.errors;
   }
+  EXPECT_EQ(c.errors.find(":2:1:"), std::string::npos) << c.errors;  // not at the texture's declaration
   char error[1000] = "";
   mjModel* m = mj_loadXML(c.xml.c_str(), nullptr, error, sizeof(error));
   ASSERT_NE(m, nullptr) << error;
   EXPECT_EQ(m->ntex, 1);  // the base colour map only
+  // The dropped metallic map leaves the reflectance at MuJoCo's default: the Metallic trait's factor 1
+  // (the user wrote none) only scales the map, and alone would be a mirror.
+  ASSERT_EQ(m->nmat, 1);
+  EXPECT_EQ(m->mat_reflectance[0], 0.0f);
   mj_deleteModel(m);
 }
 
