@@ -168,6 +168,13 @@ TEST_F(UrdfParity, BodiesMassesAndPosesMatchMuJoCosUrdfCompiler) {
     // urdf_real_robots_test). The free motion is compared with our couplings off.
     ASSERT_EQ(theirs->neq, 0);
     for (int e = 0; e < ours->neq; ++e) ours->eq_active[e] = 0;
+    // Deliberate difference: our limits are hard stops (README "Interactions"); theirs get the same softness.
+    for (int j = 0; j < theirs->njnt; ++j) {
+      const int o = mj_name2id(ours, mjOBJ_JOINT, mj_id2name(theirs, mjOBJ_JOINT, j));
+      if (o < 0) continue;
+      mju_copy(theirs->jnt_solref + mjNREF * j, ours->jnt_solref + mjNREF * o, mjNREF);
+      mju_copy(theirs->jnt_solimp + mjNIMP * j, ours->jnt_solimp + mjNIMP * o, mjNIMP);
+    }
     mju_zero(d_theirs->qvel, theirs->nv);
     mju_zero(d_ours->qvel, ours->nv);
     for (int step = 0; step < 250; ++step) {
