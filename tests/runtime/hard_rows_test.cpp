@@ -222,4 +222,67 @@ TEST(HardRows, RangeHoldsAgainstAnyMotorUpToItsLimit) {
   }
 }
 
+// A DistanceRange is a tendon limit with the same softness: a 5 kg slider pushed along x by a force motor
+// away from a world anchor 0.3 m behind it, the distance kept within [0.1, 0.5], so it stops at x = 0.2; the
+// distance's inverse inertia is the slider's 1/m, so the give is the joint range's with a0 = force / m.
+TEST(HardRows, DistanceRangeHoldsAgainstAnyPushUpToItsLimit) {
+  for (const double h : kTimesteps) {
+    for (const double force : {50.0, 500.0, 5000.0}) {
+      SCOPED_TRACE("h " + std::to_string(h) + ", force " + std::to_string(force));
+      const std::string axes = "        main_axis: Math.Vec3.X_AXIS()\n        normal: Math.Vec3.Y_AXIS()\n";
+      const openplx::testing::ScratchDir dir;
+      rt::Simulation sim = load(dir,
+                                "Slider is Physics3D.Bodies.RigidBody:\n"
+                                "    inertia.mass: 5\n"
+                                "    geometry is Physics3D.Geometries.Box:\n"
+                                "        size: {0.2, 0.2, 0.2}\n"
+                                "    end is Physics3D.Interactions.MateConnector:\n" +
+                                    axes +
+                                    "Scene is Physics3D.System:\n"
+                                    "    pivot is Physics3D.Interactions.MateConnector:\n" +
+                                    axes +
+                                    "    anchor is Physics3D.Interactions.MateConnector:\n"
+                                    "        position.x: -0.3\n" +
+                                    axes +
+                                    "    slider is Slider\n"
+                                    "    joint is Physics3D.Interactions.Prismatic:\n"
+                                    "        connectors: [pivot, slider.end]\n"
+                                    "    range is Physics3D.Interactions.DistanceRange:\n"
+                                    "        connectors: [anchor, slider.end]\n"
+                                    "        start: 0.1\n"
+                                    "        end: 0.5\n"
+                                    "    motor is Physics3D.Interactions.ForceMotor:\n"
+                                    "        default_force: " +
+                                    std::to_string(force) +
+                                    "\n"
+                                    "        connectors: [pivot, slider.end]\n",
+                                h);
+      sim.advance(2.0);
+      const double give = (1 - kImpedance) / kImpedance * force / 5.0 * std::pow(kImpedance * 2 * h, 2);
+      EXPECT_NEAR(sim.output("joint.position_output").real(), 0.2 + give, 0.1 * give + 1e-9);
+      EXPECT_LT(std::abs(sim.output("joint.velocity_output").real()), 1e-6);
+    }
+  }
+}
+
+// A range switched on by its enable input is as hard as one enabled from the start: the arm pushed by
+// 5,000 N m through a disabled range comes back to its end once the range is enabled.
+TEST(HardRows, RangeEnabledByItsInputIsAsHard) {
+  for (const double h : kTimesteps) {
+    SCOPED_TRACE("h " + std::to_string(h));
+    const openplx::testing::ScratchDir dir;
+    std::string text = pushed_into_range(false, "TorqueMotor:\n        default_torque: 5000\n");
+    text = replaced(text, {{"        end: 0.5\n", "        end: 0.5\n        enabled: false\n"}});
+    rt::Simulation sim = load(dir, text, h);
+    rt::Output q = sim.output("joint.angle_output");
+    sim.advance(0.02);
+    EXPECT_GT(q.real(), 0.5);  // through the disabled range
+    sim.input("range.enable_interaction_input").set(true);
+    sim.advance(2.0);
+    const double inertia = 5.0 * (1.0 / 3 + 0.05 * 0.05 / 12), a0 = 5000 / inertia;
+    const double give = (1 - kImpedance) / kImpedance * a0 * std::pow(kImpedance * 2 * h, 2);
+    EXPECT_NEAR(q.real(), 0.5 + give, 0.1 * give + 1e-9);
+  }
+}
+
 }  // namespace
