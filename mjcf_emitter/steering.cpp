@@ -104,8 +104,12 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
                        " rad of the linkage for inputs " + figure(fit.fitted_low) + " to " +
                        figure(fit.fitted_high) + " rad and within " + figure(fit.linkage.max_error) +
                        " rad beyond, where the linkage bends towards its dead points as no quartic does";
-    if (g.mechanism != SteeringMechanism::Ackermann)
-      held += "; the left wheel is held within " + figure(fit.input_to_left.max_error) + " rad of its angle";
+    if (g.mechanism != SteeringMechanism::Ackermann) {
+      held += "; the left wheel is held within " + figure(fit.input_to_left_fitted) +
+              " rad of its angle for inputs " + figure(fit.input_fitted_low) + " to " +
+              figure(fit.input_fitted_high) + " rad and within " + figure(fit.input_to_left.max_error) +
+              " rad beyond";
+    }
     warn(i.where, "`" + i.path + "`'s " + i.mechanism + " linkage (" + parameters(i, g.track) +
                       ") reaches steering inputs " + figure(fit.low) + " to " + figure(fit.high) +
                       " rad (its dead points; inputs are clamped there); " + held);

@@ -190,6 +190,55 @@ bool monotonic(const PolynomialFit& f, double low, double high) {
   return true;
 }
 
+// The samples within `fraction` of the reach each way, as (x, y) pairs by `pick`.
+template <typename Pick>
+std::vector<std::pair<double, double>> part_of(const SteeringLinkage& l, double fraction, Pick pick) {
+  std::vector<std::pair<double, double>> part;
+  for (const SteeringSample& s : l.samples) {
+    if (s.input >= fraction * l.low && s.input <= fraction * l.high) part.push_back(pick(s));
+  }
+  return part;
+}
+
+struct PartFit {
+  PolynomialFit f;      // max_error: over its part
+  double fraction = 0;  // of the reach each way (0: none fits)
+};
+
+// The widest part of the reach about straight ahead (down to 5 % of it) over which a polynomial of `degree`
+// fits the samples (by `pick`) within `tolerance` and is `acceptable`: scanned down from the whole reach in
+// steps of 5 %, then bisected above the first that fits (a high degree fitted on a small part may wander
+// off beyond it, so a smaller part is not always better).
+template <typename Pick, typename Acceptable>
+PartFit fit_part(const SteeringLinkage& l, Pick pick, int degree, double tolerance, Acceptable acceptable) {
+  auto within = [&](double fraction) {
+    const std::vector<std::pair<double, double>> part = part_of(l, fraction, pick);
+    PolynomialFit f = fit(part, degree);
+    f.max_error = max_error(f, part);
+    return f;
+  };
+  auto fits = [&](const PolynomialFit& f) { return f.max_error <= tolerance && acceptable(f); };
+  for (int step = 20; step >= 1; --step) {
+    const double inside = 0.05 * step;
+    PolynomialFit f = within(inside);
+    if (!fits(f)) continue;
+    if (step == 20) return {f, 1.0};
+    double low = inside, high = inside + 0.05;
+    for (int k = 0; k < 12; ++k) {
+      const double mid = (low + high) / 2;
+      PolynomialFit g = within(mid);
+      if (fits(g)) {
+        low = mid;
+        f = g;
+      } else {
+        high = mid;
+      }
+    }
+    return {f, low};
+  }
+  return {within(0.05), 0};
+}
+
 // How far the input reaches in `direction` (±1): both loops close and both wheels keep turning the way they
 // start. Marches in steps of about 2 mrad of the left wheel, then bisects the last step.
 double reach(const Mechanism& m, double direction, double slope) {
@@ -220,6 +269,42 @@ double reach(const Mechanism& m, double direction, double slope) {
 }
 
 }  // namespace
+
+double steering_input_for(const std::vector<double>& c, double left, double low, double high) {
+  if (c.empty()) return left;  // the input is the left wheel's angle itself
+  if (c.size() < 2) return 0;
+  const double at_low = evaluate_polynomial(c, low), at_high = evaluate_polynomial(c, high);
+  const double rising = at_high > at_low ? 1.0 : -1.0;
+  auto slope = [&](double x) {
+    double d = 0;
+    for (size_t p = c.size() - 1; p >= 1; --p) d = d * x + static_cast<double>(p) * c[p];
+    return d;
+  };
+  // Past an end (the equality's residual at a dead point): Newton from that end, where p is smooth.
+  const bool past_high = (left - at_high) * rising > 0, past_low = (at_low - left) * rising > 0;
+  if (past_high || past_low) {
+    double x = past_high ? high : low;
+    for (int k = 0; k < 8; ++k) {
+      const double d = slope(x);
+      if (d == 0 || !std::isfinite(d)) break;
+      x -= (evaluate_polynomial(c, x) - left) / d;
+    }
+    return x;
+  }
+  // Inside: Newton kept within a bracket that bisection shrinks (p is monotonic over [low, high]).
+  double lo = low, hi = high, x = std::clamp(left / c[1], low, high);
+  for (int k = 0; k < 100; ++k) {
+    const double f = evaluate_polynomial(c, x) - left;
+    if (f == 0) return x;
+    ((f * rising < 0) ? lo : hi) = x;
+    const double d = slope(x);
+    double next = d != 0 && std::isfinite(d) ? x - f / d : (lo + hi) / 2;
+    if (!(next > lo && next < hi)) next = (lo + hi) / 2;
+    if (std::abs(next - x) <= 1e-15 * std::max(1.0, std::abs(x))) return next;
+    x = next;
+  }
+  return x;
+}
 
 double evaluate_polynomial(const std::vector<double>& c, double x) {
   double y = 0;
@@ -253,7 +338,7 @@ SteeringLinkage steering_linkage(const SteeringGeometry& g) {
   out.low = reach(m, -1, slope);
   out.high = reach(m, 1, slope);
   // Samples clustered towards the ends (Chebyshev points), where a dead point bends the curves most.
-  constexpr int kSamples = 1200;
+  constexpr int kSamples = 600;
   for (int k = 0; k <= kSamples; ++k) {
     const double t = 0.5 - 0.5 * std::cos(M_PI * k / kSamples);
     const double input = out.low + (out.high - out.low) * t;
@@ -264,50 +349,50 @@ SteeringLinkage steering_linkage(const SteeringGeometry& g) {
     in_left.emplace_back(s.input, s.left);
     left_right.emplace_back(s.left, s.right);
   }
+  // Near a dead point a wheel's angle bends like a square root, which no polynomial follows: p and q are
+  // each fitted over the widest part of the reach about straight ahead (the same fraction of it each way)
+  // where they stay within a tolerance, and extrapolate beyond; their errors over the whole reach are what
+  // they report as max_error.
+  double fraction = 1;  // p's part of the reach
   if (g.mechanism == SteeringMechanism::Ackermann) {
     out.input_to_left.c = {0.0, 1.0};
   } else {
-    // The runtime evaluates p (any degree): the lowest degree up to 12 within 1e-7 rad, else the best.
-    // It must rise (or fall) with the input throughout, for the output inverts it.
+    // The runtime evaluates p (any degree): the lowest degree up to 12 within 1e-7 rad over the whole
+    // reach, else degree 12 within 1e-4 over the widest part. It must rise (or fall) with the input over
+    // the whole reach, for the output inverts it there (steering_input_for).
+    auto rising = [&](const PolynomialFit& f) { return monotonic(f, out.low, out.high); };
     PolynomialFit best;
     best.max_error = INFINITY;
-    for (int degree = 4; degree <= 12; ++degree) {
+    for (int degree = 4; degree <= 12 && best.max_error > 1e-7; ++degree) {
       PolynomialFit f = fit(in_left, degree);
       f.max_error = max_error(f, in_left);
-      if (f.max_error < best.max_error && monotonic(f, out.low, out.high)) best = f;
-      if (best.max_error <= 1e-7) break;
+      if (f.max_error < best.max_error && rising(f)) best = f;
     }
+    if (best.max_error > 1e-4) {
+      const PartFit part = fit_part(
+          out, [](const SteeringSample& s) { return std::make_pair(s.input, s.left); }, 12, 1e-4, rising);
+      if (part.fraction > 0) {
+        best = part.f;
+        fraction = part.fraction;
+      }
+    }
+    if (best.c.empty()) best = fit(in_left, 1);  // a line rises throughout
     out.input_to_left = best;
   }
+  out.input_fitted_low = fraction * out.low;
+  out.input_fitted_high = fraction * out.high;
   out.input_to_left.max_error = max_error(out.input_to_left, in_left);
-  // The quartic q: fitted where it can follow the linkage within kLinkageTolerance, the widest part of the
-  // reach about straight ahead (the same fraction of it each way), for near a dead point the right wheel's
-  // angle bends like a square root, which no quartic follows: beyond that part q extrapolates, and its
-  // error over the whole reach is what it reports.
-  constexpr double kLinkageTolerance = 2e-3;
-  auto within = [&](double fraction) {
-    std::vector<std::pair<double, double>> part;
-    for (const SteeringSample& s : out.samples) {
-      if (s.input >= fraction * out.low && s.input <= fraction * out.high) part.emplace_back(s.left, s.right);
-    }
-    PolynomialFit f = fit(part, 4);
-    f.max_error = max_error(f, part);
-    return f;
-  };
-  double fits = 0, misses = 1;
-  PolynomialFit q = within(1);
-  if (q.max_error > kLinkageTolerance) {
-    for (int k = 0; k < 16; ++k) {
-      const double mid = (fits + misses) / 2;
-      (within(mid).max_error <= kLinkageTolerance ? fits : misses) = mid;
-    }
-    q = within(std::max(fits, 0.05));
-  } else {
-    fits = 1;
-  }
+  out.input_to_left_fitted = max_error(out.input_to_left, part_of(out, fraction, [](const SteeringSample& s) {
+                                         return std::make_pair(s.input, s.left);
+                                       }));
+  // q: a quartic (MuJoCo's), within 2e-3 rad over its part.
+  const PartFit q_part = fit_part(
+      out, [](const SteeringSample& s) { return std::make_pair(s.left, s.right); }, 4, 2e-3,
+      [](const PolynomialFit&) { return true; });
+  const PolynomialFit q = q_part.f;
   out.linkage_fitted = q.max_error;
-  out.fitted_low = std::max(fits, 0.05) * out.low;
-  out.fitted_high = std::max(fits, 0.05) * out.high;
+  out.fitted_low = q_part.fraction * out.low;
+  out.fitted_high = q_part.fraction * out.high;
   out.linkage = q;
   out.linkage.max_error = max_error(out.linkage, left_right);
   return out;

@@ -61,15 +61,22 @@ struct SteeringLinkage {
   std::vector<SteeringSample> samples;  // over [low, high], ascending input
   double low = 0, high = 0;             // the inputs the linkage reaches: both loops close, both wheels
                                         // turning with the input (each end a dead point or a loop's limit)
-  PolynomialFit input_to_left;          // left = p(input): {0, 1} for Ackermann, a higher degree for columns
-  PolynomialFit linkage;                // right = q(left), a quartic (c has 5 entries: MuJoCo's polycoef),
-                                        // its max_error over the whole reach
-  double fitted_low = 0, fitted_high = 0;  // the inputs over which q was fitted
-  double linkage_fitted = 0;               // q's error there (rad)
+  // Each fit's max_error is over the whole reach; each was fitted over a part of it about straight ahead
+  // (near a dead point a wheel's angle bends like a square root, which no polynomial follows).
+  PolynomialFit input_to_left;  // left = p(input): {0, 1} for Ackermann, a higher degree for columns
+  PolynomialFit linkage;        // right = q(left), a quartic (c has 5 entries: MuJoCo's polycoef)
+  double input_fitted_low = 0, input_fitted_high = 0;  // the inputs over which p was fitted
+  double input_to_left_fitted = 0;                     // p's error there (rad)
+  double fitted_low = 0, fitted_high = 0;              // the inputs over which q was fitted
+  double linkage_fitted = 0;                           // q's error there (rad)
 };
 
 SteeringLinkage steering_linkage(const SteeringGeometry& g);
 
 double evaluate_polynomial(const std::vector<double>& c, double x);
+
+// The input within [low, high] (the reach, over which p rises or falls throughout) whose p(input) is `left`:
+// the steering angle output of a column. Past p's value at an end it continues from that end.
+double steering_input_for(const std::vector<double>& c, double left, double low, double high);
 
 }  // namespace openplx::mjcf

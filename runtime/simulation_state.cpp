@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mjcf_emitter/steering_linkage.h"
 #include "mjcf_emitter/xml.h"
 #include "runtime/mujoco_compat.h"
 #include "runtime/name_suggestions.h"
@@ -817,7 +818,9 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
       out[0] = equality_active(m, d, id) ? 1 : 0;
       return;
     case Quantity::JointPosition:
-      out[0] = b.sign * mjcf::steering_polynomial_inverse(b.initial_vector, d->qpos[s.address]);
+      out[0] = b.sign * (b.low < b.high  // a steering column's output: its input within the reach
+                             ? mjcf::steering_input_for(b.initial_vector, d->qpos[s.address], b.low, b.high)
+                             : mjcf::steering_polynomial_inverse(b.initial_vector, d->qpos[s.address]));
       return;
     case Quantity::JointVelocity:
       out[0] = b.sign * d->qvel[s.dof];
@@ -840,10 +843,12 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::DistanceTarget:
       out[0] = m->eq_data[id * mjNEQDATA] + m->tendon_length0[m->eq_obj1id[id]];
       return;
-    case Quantity::EqualityTarget:
-      out[0] = mjcf::steering_polynomial_inverse(
-          b.initial_vector, m->eq_data[id * mjNEQDATA] + m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]]);
+    case Quantity::EqualityTarget: {
+      const double held = m->eq_data[id * mjNEQDATA] + m->qpos0[m->jnt_qposadr[m->eq_obj1id[id]]];
+      out[0] = b.low < b.high ? mjcf::steering_input_for(b.initial_vector, held, b.low, b.high)
+                              : mjcf::steering_polynomial_inverse(b.initial_vector, held);
       return;
+    }
     case Quantity::TendonLength:
       out[0] = d->ten_length[id];
       return;

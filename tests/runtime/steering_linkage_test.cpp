@@ -409,10 +409,13 @@ TEST(KinematicSteering, EveryParameterActsAsTheDrawingSays) {
       EXPECT_NEAR(left, drawing.angles(input).first, fit.input_to_left.max_error + 1e-5);
       const double at = c.mechanism == 0 ? left : drawing.input_for(left, fit.low, fit.high);
       EXPECT_NEAR(right, drawing.angles(at).second, fit.linkage.max_error + 1e-5);
-      if (std::abs(f) == 0.5) {  // within q's fitted part: its own error
+      if (std::abs(f) == 0.5) {  // within p's and q's fitted parts: their own errors
         EXPECT_LE(fit.fitted_low, input);
         EXPECT_GE(fit.fitted_high, input);
         EXPECT_NEAR(right, drawing.angles(at).second, fit.linkage_fitted + 1e-5);
+        EXPECT_LE(fit.input_fitted_low, input);
+        EXPECT_GE(fit.input_fitted_high, input);
+        EXPECT_NEAR(left, drawing.angles(input).first, fit.input_to_left_fitted + 1e-5);
       }
     }
   }
