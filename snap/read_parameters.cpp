@@ -61,20 +61,25 @@ bool assigned(AttributeReader& in, fe::ObjectId object, std::string_view name) {
 
 }  // namespace
 
+std::optional<std::string> written_name(const fe::ObjectGraph& graph, const fe::Slot& slot) {
+  const fe::Entry* entry = slot.binding.entry;
+  const fe::ModelInfo* model = slot.binding.model;
+  if (!entry || !entry->member || !model || in_bundle(model)) return std::nullopt;
+  const bool root = graph.root != fe::kNoObject && model == graph.at(graph.root).type;
+  std::string written = root ? "" : model->qualified;
+  for (std::string_view part : entry->path) (written += written.empty() ? "" : ".") += part;
+  return written;
+}
+
 WrittenValue written_value(AttributeReader& in, fe::ObjectId object, std::string_view name) {
   const fe::ObjectGraph& g = in.graph();
-  const fe::ModelInfo* root = g.root == fe::kNoObject ? nullptr : g.at(g.root).type;
   fe::ObjectId at = object;
   std::string_view attribute = name;
   std::string below;  // the path from the assigned attribute down to `name` (`.y` of a vector written whole)
   for (int depth = 0; depth < 8; ++depth) {
     const fe::Slot* slot = g.at(at).find(attribute);
-    const fe::Entry* entry = slot ? slot->binding.entry : nullptr;
-    if (entry && entry->member && slot->binding.model && !in_bundle(slot->binding.model)) {
-      std::string written = slot->binding.model == root ? "" : slot->binding.model->qualified;
-      for (std::string_view part : entry->path) (written += written.empty() ? "" : ".") += part;
-      return {written + below, entry->member->range};
-    }
+    if (std::optional<std::string> written = slot ? written_name(g, *slot) : std::nullopt)
+      return {*written + below, slot->binding.entry->member->range};
     const fe::Object& o = g.at(at);
     if (o.owner == fe::kNoObject) break;
     below = "." + std::string(attribute) + below;

@@ -5,6 +5,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "snap/read_parameters.h"
+
 namespace openplx::snap {
 
 namespace fe = openplx::frontend;
@@ -100,9 +102,13 @@ void warn_unread_attributes(const fe::Evaluator& evaluator, fe::ObjectId root, c
     const fe::Slot& slot = graph.at(id).slots[k];
     const fe::Entry* entry = slot.binding.entry;
     if (read.count(entry) || !warned.insert(entry).second) continue;
+    // Named by the declaration holding the assignment, which every instance it binds shares.
+    const std::string name =
+        written_name(graph, slot)
+            .value_or(graph.path(id) + (id == root ? "" : ".") + std::string(slot.name()));
     sink.report(fe::DiagCode::MjcfUnmapped, entry->member->range,
-                "`" + graph.path(id) + (id == root ? "" : ".") + std::string(slot.name()) + "` (" +
-                    slot.declared_in()->qualified + ") has no MuJoCo counterpart here; it was ignored");
+                "`" + name + "` (" + slot.declared_in()->qualified +
+                    ") has no MuJoCo counterpart here; it was ignored");
   }
 }
 

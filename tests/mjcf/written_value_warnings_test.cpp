@@ -186,4 +186,35 @@ TEST(WrittenValueWarnings, TheRootsOwnAssignmentIsNamedByItsPath) {
   EXPECT_EQ(count(c.errors, file + ":18:5:"), 1u) << c.errors;  // the two that keep Grip's value
 }
 
+// An attribute MuJoCo has no counterpart for, assigned in a contact model two instances share: one warning
+// at the assignment, named by the declaration.
+TEST(WrittenValueWarnings, UnmappedAttributeOfASharedDeclarationIsNamedByIt) {
+  const openplx::testing::ScratchDir dir;
+  const Converted c = convert(dir,
+                              "const Steel is Physics.Geometries.Material\n"          // 1
+                              "Grip is Physics.Interactions.SurfaceContact.Model:\n"  // 2
+                              "    with AGX.ContactReductionBinResolution\n"          // 3
+                              "    bin_resolution: 2\n"                               // 4
+                              "    material_1: Steel\n"                               // 5
+                              "    material_2: Steel\n"                               // 6
+                              "    normal_restitution: 0\n"                           // 7
+                              "    tangential_restitution: 0\n"                       // 8
+                              "Ball is Physics3D.Bodies.RigidBody:\n"                 // 9
+                              "    inertia.mass: 1\n"                                 // 10
+                              "    geometry is Physics3D.Geometries.Sphere:\n"        // 11
+                              "        radius: 0.1\n"                                 // 12
+                              "        material: Steel\n"                             // 13
+                              "Scene is Physics3D.System:\n"                          // 14
+                              "    ball is Ball\n"                                    // 15
+                              "    grip_a is Grip\n"                                  // 16
+                              "    grip_b is Grip\n");                                // 17
+  ASSERT_EQ(c.status, 0) << c.errors;
+  const std::string file = (dir / "crates.openplx").string();
+  EXPECT_EQ(count(c.errors, file + ":4:5: warning: `Grip.bin_resolution` (AGX.ContactReductionBinResolution) "
+                                   "has no MuJoCo counterpart here; it was ignored [mjcf-unmapped]"),
+            1u)
+      << c.errors;
+  EXPECT_EQ(count(c.errors, file + ":4:"), 1u) << c.errors;
+}
+
 }  // namespace
