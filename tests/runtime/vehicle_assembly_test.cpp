@@ -25,6 +25,7 @@ struct Car {
   bool elastic_wheels = false;
   bool steered = false;        // front suspensions with Properties.Steering and an Ackermann steering
   double chassis_width = 0.8;  // m; 1.6 puts the wheels half inside the chassis box (wheel wells)
+  bool steel = false;          // chassis and rims of one material, with a SurfaceContact model for it
 };
 
 // Four wheels on spring-damper suspensions. The mounts are the vehicle's own connectors, redirected to the
@@ -35,13 +36,15 @@ std::string car(const Car& c) {
                      std::string(c.static_chassis ? "    is_dynamic: false\n" : "    inertia.mass: 800\n") +
                      "    body is Physics3D.Geometries.Box:\n"
                      "        size: {3.0, " +
-                     std::to_string(c.chassis_width) +
-                     ", 0.4}\n"
+                     std::to_string(c.chassis_width) + ", 0.4}\n" +
+                     (c.steel ? "        material: Steel\n" : "") +
                      "Rim is Vehicles.Wheels.Rim:\n"
                      "    radius: 0.35\n"
                      "    width: 0.25\n"
                      "    rotational_axis: Math.Vec3.Y_AXIS()\n"
-                     "    inertia.mass: 20\n";
+                     "    inertia.mass: 20\n" +
+                     (c.steel ? "    geometry.material: Steel\n" : "");
+  if (c.steel) text = "const Steel is Physics.Geometries.Material\n" + text;
   if (c.elastic_wheels) {
     text +=
         "Wheel is Vehicles.Wheels.ElasticWheel:\n"
@@ -68,6 +71,14 @@ std::string car(const Car& c) {
       "        floor is Physics3D.Geometries.Box:\n"
       "            size: {100, 100, 0.2}\n"
       "    chassis is Chassis\n";
+  if (c.steel) {
+    text +=
+        "    grip is Physics.Interactions.SurfaceContact.Model:\n"
+        "        material_1: Steel\n"
+        "        material_2: Steel\n"
+        "        normal_restitution: 0\n"
+        "        tangential_restitution: 0\n";
+  }
   const char* corners[] = {"front_left", "front_right", "rear_left", "rear_right"};
   for (const char* corner : corners) {
     const std::string name = corner;
@@ -193,8 +204,9 @@ int wheel_chassis_contacts(const mjModel* m, const mjData* d, int chassis, const
 // Wheels half inside the chassis box (wheel wells 0.125 m deep) are steered by an Ackermann steering over
 // the inputs a user may set (AGX's 0.05 rad and ±0.3 rad): not one contact between a wheel and the chassis
 // at any step, for a chassis on the ground (parent of its wheels), a static one (welded to the world, where
-// MuJoCo would let its children touch it: 2000 contacts up to 14 cm deep in 1 s without the <exclude>s)
-// and elastic wheels (the tire two bodies below the chassis: 2000 contacts up to 24 cm deep without).
+// MuJoCo would let its children touch it: 2000 contacts up to 14 cm deep in 1 s without the <exclude>s),
+// elastic wheels (the tire two bodies below the chassis: 2000 contacts up to 24 cm deep without) and a
+// contact model naming the chassis's and the rims' material (a <pair> would bypass every filter).
 TEST(VehicleAssembly, WheelsNeverTouchTheirChassisWhileSteering) {
   struct Case {
     const char* name;
@@ -202,7 +214,8 @@ TEST(VehicleAssembly, WheelsNeverTouchTheirChassisWhileSteering) {
   };
   const Case cases[] = {{"dynamic", {false, false, true, 1.6}},
                         {"static", {true, false, true, 1.6}},
-                        {"elastic", {false, true, true, 1.6}}};
+                        {"elastic", {false, true, true, 1.6}},
+                        {"pairs", {false, false, true, 1.6, true}}};
   for (const Case& c : cases) {
     for (const double dt : {0.002, 0.02}) {
       // Elastic tires at dt 0.02 carrying a car diverge in their radial turns (300 kN m/rad springs, a 7.7 ms
