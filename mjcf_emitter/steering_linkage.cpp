@@ -240,7 +240,11 @@ PartFit fit_part(const SteeringLinkage& l, Pick pick, int degree, double toleran
 }
 
 // How far the input reaches in `direction` (±1): both loops close and both wheels keep turning the way they
-// start. Marches in steps of about 2 mrad of the left wheel, then bisects the last step.
+// start, the left one at least kLeastRate of its rate straight ahead (where a wheel stops turning with the
+// input, at a lever's or rack's own dead point, the last stretch of input hardly moves it, and the output,
+// read back from the left wheel's angle, could not tell those inputs apart). Marches in steps of about
+// 2 mrad of the left wheel, then bisects the last step.
+constexpr double kLeastRate = 0.05;
 double reach(const Mechanism& m, double direction, double slope) {
   const double step = 2e-3 / std::abs(slope);
   const double eps = 1e-9 / std::abs(slope);
@@ -248,7 +252,8 @@ double reach(const Mechanism& m, double direction, double slope) {
     const auto at = m.angles(theta), before = m.angles(theta - direction * eps);
     if (!at || !before) return false;
     const double turn = direction * (slope > 0 ? 1.0 : -1.0);
-    return (at->first - before->first) * turn > 0 && (at->second - before->second) * turn > 0;
+    return (at->first - before->first) * turn > kLeastRate * std::abs(slope) * eps &&
+           (at->second - before->second) * turn > 0;
   };
   double inside = 0, outside = 0;
   bool stopped = false;

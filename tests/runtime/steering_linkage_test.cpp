@@ -421,6 +421,39 @@ TEST(KinematicSteering, EveryParameterActsAsTheDrawingSays) {
   }
 }
 
+// The output inverts p within the reach: every input across it comes back from its p (to 1e-12 rad), even
+// where p, extrapolated past its fitted part, bends hardest; a left angle a little past p's value at an end
+// (the equality's residual) gives an input a little past that end.
+TEST(KinematicSteering, TheOutputInvertsTheInputPolynomialOverTheReach) {
+  for (const int mechanism : {1, 2}) {
+    for (const auto& set : std::vector<std::vector<std::pair<std::string, double>>>{
+             {},
+             {{"initial_angle_right_tie_rod", 0.2}},
+             {{"steering_column_distance", 0.6}, {"gear", -1.5}}}) {
+      Params p;
+      p.mechanism = mj::SteeringMechanism(mechanism);
+      p.set = set;
+      const mj::SteeringLinkage fit = mj::steering_linkage(p.geometry(1.0));
+      ASSERT_TRUE(fit.problem.empty());
+      const std::vector<double>& c = fit.input_to_left.c;
+      for (int k = 0; k <= 400; ++k) {
+        const double input = fit.low + (fit.high - fit.low) * k / 400;
+        EXPECT_NEAR(mj::steering_input_for(c, mj::evaluate_polynomial(c, input), fit.low, fit.high), input,
+                    1e-12)
+            << kNames[mechanism] << " " << input;
+      }
+      for (const double end : {fit.low, fit.high}) {
+        const double past =
+            mj::evaluate_polynomial(c, end) + 1e-7 * (mj::evaluate_polynomial(c, end) > 0 ? 1 : -1);
+        const double back = mj::steering_input_for(c, past, fit.low, fit.high);
+        EXPECT_NEAR(mj::evaluate_polynomial(c, back), past, 1e-12);
+        EXPECT_GT(std::abs(back), std::abs(end));
+        EXPECT_LT(std::abs(back - end), 1e-4);
+      }
+    }
+  }
+}
+
 // gear turns the column: gear 2 at θ puts the wheels where gear 1 does at 2θ; the output still reads θ.
 TEST(KinematicSteering, GearTurnsTheColumn) {
   for (const int mechanism : {1, 2}) {
