@@ -59,13 +59,21 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
       result.evaluator->evaluate_layouts(result.root);
     }
   });
-  if (result.root != kNoObject) {  // the models the root holds: every instance's type and what it extends
-    std::unordered_set<const ModelInfo*> types, held;
-    const ObjectGraph& graph = result.evaluator->graph();
-    for (size_t k = 0; k < graph.objects.size(); ++k) types.insert(graph.objects[k].type);
-    for (const ModelInfo* type : types)
-      if (type) held.insert(type->linearization().begin(), type->linearization().end());
-    result.program->report_agx_annotations([&](const ModelInfo* m) { return held.count(m) > 0; });
+  if (result.root != kNoObject) {
+    // The models the root holds: every instance's type and what it extends (found once, if asked at all).
+    std::unordered_set<const ModelInfo*> held;
+    bool found = false;
+    result.program->report_agx_annotations([&](const ModelInfo* m) {
+      if (!found) {
+        std::unordered_set<const ModelInfo*> types;
+        const ObjectGraph& graph = result.evaluator->graph();
+        for (size_t k = 0; k < graph.objects.size(); ++k) types.insert(graph.objects[k].type);
+        for (const ModelInfo* type : types)
+          if (type) held.insert(type->linearization().begin(), type->linearization().end());
+        found = true;
+      }
+      return held.count(m) > 0;
+    });
   }
   return result;
 }
