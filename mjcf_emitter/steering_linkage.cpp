@@ -297,7 +297,7 @@ double steering_input_for(const std::vector<double>& c, double left, double low,
     return x;
   }
   // Inside: Newton kept within a bracket that bisection shrinks (p is monotonic over [low, high]).
-  double lo = low, hi = high, x = std::clamp(left / c[1], low, high);
+  double lo = low, hi = high, x = c[1] != 0 ? std::clamp(left / c[1], low, high) : (low + high) / 2;
   for (int k = 0; k < 100; ++k) {
     const double f = evaluate_polynomial(c, x) - left;
     if (f == 0) return x;

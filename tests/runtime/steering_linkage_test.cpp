@@ -174,7 +174,7 @@ struct Drawing {
   std::pair<double, double> angles(double input) const {
     const double b = arm[0].norm();
     Vector2d end[2] = {king[0] + arm[0], king[1] + arm[1]};
-    constexpr int kSteps = 2000;
+    constexpr int kSteps = 200;  // enough to keep to the branch; each step solves exactly
     for (int k = 1; k <= kSteps; ++k) {
       const double x = input * k / kSteps;
       if (p.mechanism == mj::SteeringMechanism::Ackermann) {
