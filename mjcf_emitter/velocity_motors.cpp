@@ -13,11 +13,11 @@ namespace openplx::mjcf {
 namespace {
 
 // The reference joint outweighs what the motor drives by this factor, so the motor's reaction tau turns it
-// by tau h / (1e6 I) before its servo takes that back in the next step: with noslip (emitter.cpp) making the
-// friction row exact, that is the motor's whole tracking error (3e-8 rad/s for 4.9 N m on 0.33 kg m^2 at
-// h = 0.002). 1e9 would leave 1e-3 of it, but then noslip's sweeps over a chain of motors (a 7-link arm)
-// wander off (0.14 rad/s after 2 s), where at 1e6 they only fail to converge (1.1e-3 rad/s, as without).
-constexpr double kReferenceInertiaRatio = 1e6;
+// by tau h / (1e9 I) before its servo takes that back in the next step: with noslip (emitter.cpp) making the
+// friction row exact, that is the motor's whole tracking error (a motor reaching its target in one step
+// is 1e-9 short of it; 1e-6 at a ratio of 1e6). The reference joints dominate MuJoCo's mean inertia, by
+// which its solver divides its stopping test: emitter.cpp tightens the tolerance to match.
+constexpr double kReferenceInertiaRatio = 1e9;
 
 }  // namespace
 

@@ -59,8 +59,8 @@ std::string braked_drive_train(double effort) {
 
 // AGX's drive_train_brake check: the hinge at 0 within 1e-4 rad/s after 0.5 s against the motor pushing for
 // 1 rad/s, whatever its effort up to the brake's capacity (measured 1e-14). Beyond, the brake slips carrying
-// exactly its capacity and the motor reaches its target, short by its reference joint's give tau h / (1e6 I)
-// (tau the 1e6 N m it pushes, I = 4.8 kg m^2 the line it drives: 4.2e-4 rad/s at h = 0.002).
+// exactly its capacity and the motor reaches its target, short by its reference joint's give tau h / (1e9 I)
+// (tau the 1e6 N m it pushes, I = 4.8 kg m^2 the line it drives: 4.2e-7 rad/s at h = 0.002).
 TEST(HardRows, BrakeHoldsAnyMotorUpToItsCapacityAndSlipsBeyond) {
   for (const double h : kTimesteps) {
     for (const double effort : {1e3, 1e5, 9e5, 2e6}) {
@@ -76,7 +76,7 @@ TEST(HardRows, BrakeHoldsAnyMotorUpToItsCapacityAndSlipsBeyond) {
         EXPECT_LT(torque, 1e6);
       } else {
         constexpr double kLineInertia = 4.4;  // at least: shafts 1 + 0.1, the 10 kg rod about its end 3.3
-        EXPECT_NEAR(speed, 1.0, 1e6 * h / (1e6 * kLineInertia));
+        EXPECT_NEAR(speed, 1.0, 1e6 * h / (1e9 * kLineInertia));
         EXPECT_NEAR(torque, 1e6, 1e-6 * 1e6);
       }
     }
@@ -110,8 +110,8 @@ std::string rod_on_motor(double mass) {
 }
 
 // Loads up to the effort limit: the rod's weight pulls with 2.5 to 9.8 N m. With noslip the friction row is
-// exact; what is left is the reference joint's give: it outweighs the rod 1e6 times and its servo meets its
-// target within a step, so the motor's reaction tau turns it at tau h / (1e6 I) (measured: exactly that).
+// exact; what is left is the reference joint's give: it outweighs the rod 1e9 times and its servo meets its
+// target within a step, so the motor's reaction tau turns it at tau h / (1e9 I) (measured: exactly that).
 TEST(HardRows, VelocityMotorHoldsItsTargetUnderAnyLoadUpToItsLimit) {
   for (const double h : kTimesteps) {
     for (const double mass : {0.5, 1.0, 1.5, 2.0}) {
@@ -120,7 +120,7 @@ TEST(HardRows, VelocityMotorHoldsItsTargetUnderAnyLoadUpToItsLimit) {
       rt::Simulation sim = load(dir, rod_on_motor(mass), h);
       sim.advance(2.0);
       const double load = mass * 9.81 * 0.5, inertia = mass * (1.0 / 3 + 0.02 * 0.02 / 12);
-      const double creep = load * h / (1e6 * inertia);
+      const double creep = load * h / (1e9 * inertia);
       EXPECT_LT(std::abs(sim.output("hinge.angular_velocity_output").real()), 1.5 * creep);
       EXPECT_LT(std::abs(sim.output("hinge.angle_output").real()), 1.5 * creep * 2.0);
       EXPECT_NEAR(std::abs(sim.output("motor.torque_output").real()), load, 1e-3 * load);

@@ -62,7 +62,7 @@ TEST(MotorConstraint, ReachesItsTargetInOneStepUnderLoad) {
 
 // Holding 0 against gravity within its range: no creep. Noslip makes the friction row exact (without it, its
 // impedance 0.9999 leaves h (1 - d) a0 = 3e-6 rad/s, a0 = tau / I = 4.9 / 0.333 = 14.7 rad/s^2); what is
-// left is the reference joint's give, tau h / (1e6 I) = 2.9e-8 rad/s, 5.9e-8 rad in 2 s.
+// left is the reference joint's give, tau h / (1e9 I) = 2.9e-11 rad/s, 5.9e-11 rad in 2 s.
 TEST(MotorConstraint, HoldsZeroUnderALoadWithoutCreep) {
   const openplx::testing::ScratchDir dir;
   rt::Simulation sim = load(dir, rod_on_motor("        max_effort: 10\n        min_effort: -10\n"));
@@ -70,8 +70,8 @@ TEST(MotorConstraint, HoldsZeroUnderALoadWithoutCreep) {
   rt::Output speed = sim.output("hinge.angular_velocity_output");
   rt::Output torque = sim.output("motor.torque_output");
   sim.advance(2.0);
-  EXPECT_LT(std::abs(angle.real()), 1e-7);
-  EXPECT_LT(std::abs(speed.real()), 5e-8);
+  EXPECT_LT(std::abs(angle.real()), 1e-10);
+  EXPECT_LT(std::abs(speed.real()), 5e-11);
   EXPECT_NEAR(std::abs(torque.real()), kGravityTorque, 1e-3);  // it carries the rod
 }
 
