@@ -62,10 +62,13 @@ enum class Quantity {
   EqualityTarget,  // Equality (a joint equality holding joint1 alone at a value: a kinematic steering angle):
                    // value = qpos0 of joint1 + polycoef[0]; writing sets polycoef[0] (Real, readable).
                    // With `initial_vector` = polynomial coefficients c0.. (a steering column's), joint1 is
-                   // held at poly(value) and reading inverts it (steering_polynomial_inverse)
+                   // held at poly(value) and reading inverts it (steering_polynomial_inverse; within
+                   // [`low`, `high`] when low < high: steering_input_for). `low` < `high` (or low = high
+                   // with `initial_vector`): the linkage's reach, to which the input is clamped
   // --- outputs
   JointPosition,      // Joint: d->qpos[jnt_qposadr[id]] (hinge rad, slide m), times `sign`; with
                       // `initial_vector` = polynomial coefficients, the value x with poly(x) = qpos instead
+                      // (within [`low`, `high`] when low < high: a steering column's reach)
   JointVelocity,      // Joint: d->qvel[jnt_dofadr[id]], times `sign`
   ActuatorForce,      // Actuator: d->actuator_force[id] (N or N·m on the joint)
   MotorForce,         // Tendon (velocity motor): the friction row's force (efc rows of type
