@@ -71,7 +71,7 @@ std::optional<std::string> written_name(const fe::ObjectGraph& graph, const fe::
   return written;
 }
 
-WrittenValue written_value(AttributeReader& in, fe::ObjectId object, std::string_view name) {
+WrittenValue written_value(const AttributeReader& in, fe::ObjectId object, std::string_view name) {
   const fe::ObjectGraph& g = in.graph();
   fe::ObjectId at = object;
   std::string_view attribute = name;

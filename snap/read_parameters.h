@@ -17,7 +17,7 @@ void read_interaction_parameters(AttributeReader& in, frontend::ObjectId id, Int
 // object holding it (a vector written whole), named by the declaration whose text holds that assignment
 // (`Paint.metallic_map` for every instance of Paint; the converted root's own ones by their path). A value
 // no user wrote is named by the instance's path, at the user's declaration of the object.
-WrittenValue written_value(AttributeReader& in, frontend::ObjectId object, std::string_view name);
+WrittenValue written_value(const AttributeReader& in, frontend::ObjectId object, std::string_view name);
 // The name of the attribute a user's assignment binds, as written_value gives it (nullopt: no user's entry).
 std::optional<std::string> written_name(const frontend::ObjectGraph& graph, const frontend::Slot& slot);
 

@@ -5,43 +5,24 @@
 
 #include "frontend/value_format.h"
 #include "snap/attribute_reader.h"
+#include "snap/read_parameters.h"
 #include "snap/resolve_system.h"
 
 namespace openplx::snap {
 
 namespace fe = openplx::frontend;
 
-namespace {
-
-bool in_bundle(const fe::ModelInfo* m) {
-  return m && m->doc && m->doc->bundle;
-}
-
-}  // namespace
-
 fe::SourceRange AttributeReader::written_at(fe::ObjectId object, std::string_view name) const {
-  const fe::ObjectGraph& g = graph();
-  fe::ObjectId at = object;
-  std::string_view attribute = name;
-  // Up through the owners: `position: {0, Math.INF, 0}` binds the vector, not its `y`.
-  for (int depth = 0; at != fe::kNoObject && depth < 8; ++depth) {
-    const fe::Slot* slot = g.at(at).find(attribute);
-    if (slot && slot->binding.entry && slot->binding.entry->member && !in_bundle(slot->binding.model))
-      return slot->binding.entry->member->range;
-    const fe::Object& o = g.at(at);
-    if (o.owner == fe::kNoObject) break;
-    attribute = o.name;
-    at = o.owner;
-  }
-  return source_of(g, object);
+  return written_value(*this, object, name).where;
 }
 
+// Named as written: a value in a declaration that several instances share is one error for all of them.
 bool AttributeReader::require(bool valid, fe::ObjectId object, std::string_view name, double value,
                               std::string_view rule) {
   if (valid || !sink_) return valid;
-  sink_->report(fe::DiagCode::InvalidValue, written_at(object, name),
-                "`" + graph().path(object) + "." + std::string(name) + "` is " + fe::format_real(value) +
-                    "; " + std::string(rule));
+  const WrittenValue written = written_value(*this, object, name);
+  sink_->report(fe::DiagCode::InvalidValue, written.where,
+                "`" + written.name + "` is " + fe::format_real(value) + "; " + std::string(rule));
   return false;
 }
 

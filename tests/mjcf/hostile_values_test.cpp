@@ -87,7 +87,7 @@ std::string rod(const std::string& mass, const std::string& more = "") {
 }
 
 TEST_F(Hostile, NegativeMassIsAnErrorAtItsLine) {
-  expect_error_at(convert(rod("-1.0")), 2, 5, "`rod.inertia.mass` is -1.0; a mass is 0");
+  expect_error_at(convert(rod("-1.0")), 2, 5, "`Rod.inertia.mass` is -1.0; a mass is 0");
 }
 
 TEST_F(Hostile, DivisionByZeroIsAnErrorAtTheExpression) {
@@ -99,7 +99,7 @@ TEST_F(Hostile, NaNAndOverflowAreErrorsAtTheExpression) {
   expect_error_at(convert(rod("Math.INF - Math.INF")), 2, 19, "no number (NaN)");
   expect_error_at(convert(rod("1e300 * 1e300")), 2, 19, "overflows");
   expect_error_at(convert(rod("Math.Functions.sqrt(-1.0)")), 2, 19, "`Math.Functions.sqrt` gives no number");
-  expect_error_at(convert(rod("Math.INF")), 2, 5, "`rod.inertia.mass` is inf");
+  expect_error_at(convert(rod("Math.INF")), 2, 5, "`Rod.inertia.mass` is inf");
 }
 
 TEST_F(Hostile, InfinityStaysAValueWhereItMeansNoLimit) {
@@ -114,7 +114,7 @@ TEST_F(Hostile, NonPhysicalInertiaTensorsAreErrors) {
       convert(
           rod("1.0",
               "    inertia.tensor: Physics3D.Bodies.Inertia.symmetric_tensor({-1.0, 1.0, 1.0}, 0, 0, 0)\n")),
-      5, 5, "`rod.inertia.tensor` is -1.0; its principal moments must be 0 or positive");
+      5, 5, "`Rod.inertia.tensor` is -1.0; its principal moments must be 0 or positive");
   expect_error_at(
       convert(
           rod("1.0",
@@ -124,7 +124,7 @@ TEST_F(Hostile, NonPhysicalInertiaTensorsAreErrors) {
 
 TEST_F(Hostile, InfinitePositionAndZeroQuaternionAreErrors) {
   expect_error_at(convert(rod("1.0", "    kinematics.local_transform.position: {0.0, Math.INF, 0.0}\n")), 5,
-                  5, "`rod.kinematics.local_transform.position.y` is inf; a position is finite");
+                  5, "`Rod.kinematics.local_transform.position.y` is inf; a position is finite");
   expect_error_at(convert(rod("1.0", "    kinematics.local_transform.position.z: -Math.INF\n")), 5, 5,
                   "position.z` is -inf");
   // No rotation is not the identity: taking it for one would be silently wrong.
@@ -137,7 +137,7 @@ TEST_F(Hostile, InfinitePositionAndZeroQuaternionAreErrors) {
 TEST_F(Hostile, NegativeSizesDensitiesAndInfiniteConnectorsAreErrors) {
   std::string negative = rod("1.0");
   negative.replace(negative.find("{0.05, 0.05"), 5, "{-0.05");
-  expect_error_at(convert(negative), 4, 9, "`rod.geometry.size.x` is -0.05; a box's size is finite");
+  expect_error_at(convert(negative), 4, 9, "`Rod.geometry.size.x` is -0.05; a box's size is finite");
   expect_error_at(convert("const Light is Physics.Geometries.Material:\n"
                           "    density: -5.0\n" +
                           rod("1.0", "    geometry.material: Light\n")),
@@ -145,7 +145,7 @@ TEST_F(Hostile, NegativeSizesDensitiesAndInfiniteConnectorsAreErrors) {
   expect_error_at(convert(rod("1.0",
                               "    top is Physics3D.Interactions.MateConnector:\n"
                               "        position: {0, 0, Math.INF}\n")),
-                  6, 9, "`rod.top.position.z` is inf; a connector's position and axes are finite");
+                  6, 9, "`Rod.top.position.z` is inf; a connector's position and axes are finite");
 }
 
 // A hinged arm with a torsion spring whose stiffness line (line 14) is `stiffness`.
@@ -202,9 +202,9 @@ TEST_F(Hostile, DrivetrainNumbersOutOfRangeAreErrorsAtTheirLines) {
   expect_machine_error(*this, capacity, "differential.gear_ratio: Math.INF",
                        "a gear ratio is a finite number other than 0");
   expect_machine_error(*this, capacity, "gear_box.forward_gears: [3.5, 0.0, 1.2]",
-                       "`power.gear_box.forward_gears` is 0.0");
+                       "`PowerTrain.gear_box.forward_gears` is 0.0");
   expect_machine_error(*this, capacity, "clutch.torque_capacity: -300",
-                       "`power.clutch.torque_capacity` is -300.0; a torque capacity is a finite number");
+                       "`PowerTrain.clutch.torque_capacity` is -300.0; a torque capacity is a finite number");
   expect_machine_error(*this, "left_brake.torque_capacity: 1500", "left_brake.torque_capacity: Math.INF",
                        "a torque capacity is a finite number");
 }

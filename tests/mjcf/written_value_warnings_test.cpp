@@ -217,4 +217,19 @@ TEST(WrittenValueWarnings, UnmappedAttributeOfASharedDeclarationIsNamedByIt) {
   EXPECT_EQ(count(c.errors, file + ":4:"), 1u) << c.errors;
 }
 
+// A value nothing can simulate in a declaration two instances share: one error, named by the declaration.
+TEST(WrittenValueWarnings, AnInvalidValueOfASharedDeclarationIsOneError) {
+  const openplx::testing::ScratchDir dir;
+  const Converted c = convert(dir,
+                              "Rod is Physics3D.Bodies.RigidBody:\n"  // 1
+                              "    inertia.mass: -1\n"                // 2
+                              "Scene is Physics3D.System:\n"          // 3
+                              "    left is Rod\n"                     // 4
+                              "    right is Rod\n");                  // 5
+  EXPECT_EQ(c.status, 1) << c.errors;
+  const std::string file = (dir / "crates.openplx").string();
+  EXPECT_EQ(count(c.errors, file + ":2:5: error: `Rod.inertia.mass` is -1.0"), 1u) << c.errors;
+  EXPECT_EQ(count(c.errors, "is -1"), 1u) << c.errors;
+}
+
 }  // namespace
