@@ -101,8 +101,9 @@ void Lowering::emit_texture(Element& material, const sn::VisualMaterial& m, cons
     warn(t.wrap_at.where,
          "`" + t.wrap_at.name + "` has no MuJoCo counterpart (textures repeat); " + map + " repeats");
   if (t.offset_u != 0 || t.offset_v != 0)
-    warn(t.offset_at.where, "`" + t.offset_at.name + "` has no MuJoCo counterpart (nor its other offset); " +
-                                map + " starts at 0");
+    warn(t.offset_at.where, "`" + t.offset_at.name +
+                                "` has no MuJoCo counterpart (textures have no offset); " + map +
+                                " starts at 0");
   std::string file = t.file;
   if (!options_.output_dir.empty())
     file = fs::path(t.file).lexically_relative(options_.output_dir).generic_string();

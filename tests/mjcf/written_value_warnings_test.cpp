@@ -109,7 +109,7 @@ TEST(WrittenValueWarnings, EachAtItsAssignmentOnceNamedByTheSharedDeclaration) {
           ":5:5: warning: `Point.swizzle` (\"r\") has no MuJoCo counterpart; all channels of "
           "`Paint.base_color_map` were used [mjcf-unmapped]",
       file +
-          ":6:5: warning: `Point.offset_u` has no MuJoCo counterpart (nor its other offset); "
+          ":6:5: warning: `Point.offset_u` has no MuJoCo counterpart (textures have no offset); "
           "`Paint.base_color_map` starts at 0 [mjcf-unmapped]",
       file + ":11:5: warning: `Paint.metallic_map` is a texture MuJoCo 2.2.2 materials have no slot for",
       file + ":13:5: warning: `Paint.roughness_map` is a texture MuJoCo 2.2.2 materials have no slot for",
