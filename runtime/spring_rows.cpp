@@ -5,11 +5,18 @@
 
 namespace openplx::runtime {
 
+namespace {
+
+// The fraction of MuJoCo's softness a hardened friction row keeps. A row leaks h (1 - d) of the acceleration
+// a0 it holds back per step, 1 - d = 1e-4 at MuJoCo's stiffest; this leaves 1e-7. Harder rows (1e-4 and
+// below, measured) leave the Newton solver's Hessian too ill-conditioned beside the motors' 1e9 reference
+// inertias: its stopping test passes early and the springs' rows are solved worse than the drives gain.
+constexpr double kHardenedSoftness = 1e-3;
+
+}  // namespace
+
 bool SpringRows::resolve(mjModel* m, const mjcf::RuntimeLaw& law) {
-  // MuJoCo's noslip (emitted for friction-row drives) re-solves every friction row without its softness,
-  // which would make the row a rigid servo: such models keep the stand-in.
-  if (law.actuators.size() != 1 || mjDISABLED(mjDSBL_FRICTIONLOSS) || mjDISABLED(mjDSBL_CONSTRAINT) ||
-      m->opt.noslip_iterations > 0)
+  if (law.actuators.size() != 1 || mjDISABLED(mjDSBL_FRICTIONLOSS) || mjDISABLED(mjDSBL_CONSTRAINT))
     return false;
   const std::string& name = law.actuators.front();
   const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()), t = mj_name2id(m, mjOBJ_TENDON, name.c_str());
@@ -35,6 +42,12 @@ bool SpringRows::resolve(mjModel* m, const mjcf::RuntimeLaw& law) {
   m->dof_damping[dof] = std::max(0.0, m->dof_damping[dof] - law.joint_damping);
   m->tendon_frictionloss[t] =
       1;  // any positive value makes mj_step1 build the row; write_rows sets its bound
+  // MuJoCo's noslip (emitted for friction-row drives) re-solves every friction row without its softness,
+  // which would make this row a rigid servo: the runtime does noslip's work on the other rows instead.
+  if (m->opt.noslip_iterations > 0) {
+    m->opt.noslip_iterations = 0;
+    harden_other_friction_rows_ = true;
+  }
   if (spring_of_tendon_.empty()) spring_of_tendon_.assign(static_cast<size_t>(m->ntendon), -1);
   spring_of_tendon_[static_cast<size_t>(t)] = static_cast<int>(springs_.size());
   springs_.push_back(std::move(s));
@@ -49,9 +62,15 @@ bool SpringRows::resolve(mjModel* m, const mjcf::RuntimeLaw& law) {
 void SpringRows::write_rows(mjModel* m, mjData* d) {
   for (Spring& s : springs_) s.row = -1;
   for (int r = d->ne; r < d->ne + d->nf; ++r) {
-    if (d->efc_type[r] != mjCNSTR_FRICTION_TENDON) continue;
-    const int spring = spring_of_tendon_[static_cast<size_t>(d->efc_id[r])];
-    if (spring >= 0) springs_[static_cast<size_t>(spring)].row = r;
+    const int spring =
+        d->efc_type[r] == mjCNSTR_FRICTION_TENDON ? spring_of_tendon_[static_cast<size_t>(d->efc_id[r])] : -1;
+    if (spring >= 0) {
+      springs_[static_cast<size_t>(spring)].row = r;
+    } else if (harden_other_friction_rows_) {
+      // Noslip's work, nearly: the row without most of its softness.
+      d->efc_R[r] *= kHardenedSoftness;
+      d->efc_D[r] = 1 / d->efc_R[r];
+    }
   }
   const double h = m->opt.timestep;
   for (Spring& s : springs_) {

@@ -36,6 +36,10 @@ class SpringRows {
   };
   std::vector<Spring> springs_;
   std::vector<int> spring_of_tendon_;  // per tendon: its spring, -1
+  // The model asked for noslip (it has friction-row drives: motors, brakes, clutches). Noslip would re-solve
+  // the springs' rows without their softness, so the runtime turns it off and makes every other friction
+  // row as hard as noslip would have (write_rows).
+  bool harden_other_friction_rows_ = false;
 };
 
 }  // namespace openplx::runtime

@@ -379,4 +379,49 @@ TEST(SpringRow, TorsionSpringComesToRestWithinItsLimit) {
   }
 }
 
+// A model with friction-row drives asks MuJoCo for noslip, which would make spring rows rigid servos: the
+// runtime turns noslip off and hardens the drives' rows itself, so in one model the limited spring rests as
+// AGX's does and a velocity motor under a gravity load holds its target, at both steps.
+TEST(SpringRow, SpringAndVelocityMotorInOneModelAreBothExact) {
+  for (const double h : {0.002, 0.02}) {
+    SCOPED_TRACE("h = " + number(h));
+    SpringSpec s;  // LinearSpringTest's spring: 1e6 N/m, +-200 N, AGX's default damping
+    const std::string text =
+        "Arm is Physics3D.Bodies.RigidBody:\n"
+        "    inertia.mass: 1\n"
+        "    geometry is Physics3D.Geometries.Box:\n"
+        "        size: {1, 0.02, 0.02}\n"
+        "    end is Physics3D.Interactions.MateConnector:\n"
+        "        position.x: -0.5\n"
+        "        main_axis: Math.Vec3.Y_AXIS()\n"
+        "        normal: Math.Vec3.X_AXIS()\n" +
+        falling_rod({s}) +
+        "    pivot is Physics3D.Interactions.MateConnector:\n"
+        "        position.x: 5\n"
+        "        main_axis: Math.Vec3.Y_AXIS()\n"
+        "        normal: Math.Vec3.X_AXIS()\n"
+        "    arm is Arm\n"
+        "    hinge is Physics3D.Interactions.Hinge:\n"
+        "        connectors: [pivot, arm.end]\n"
+        "    motor is Physics3D.Interactions.RotationalVelocityMotor:\n"
+        "        connectors: [pivot, arm.end]\n"
+        "        target_speed: 1\n"
+        "        min_effort: -10\n"
+        "        max_effort: 10\n";
+    const openplx::testing::ScratchDir dir;
+    rt::Simulation sim = load(dir, text, h);
+    // The motor's friction row is what makes the emitted model ask for noslip.
+    EXPECT_GE(mj_name2id(sim.model(), mjOBJ_TENDON, "motor"), 0);
+    rt::Output speed = sim.output("hinge.angular_velocity_output");
+    const RodRun r = run(sim, 1, 2.0);
+    EXPECT_NEAR(r.q, -kMass * kGravity / s.stiffness, 1e-3);
+    EXPECT_NEAR(r.v, 0.0, 1e-3);
+    EXPECT_LE(r.largest[0], 200 * (1 + 1e-12));
+    // The arm's weight (up to m g L / 2 = 4.9 N m, within the motor's 10, on I = m L^2 / 3) leaks h (1 - d)
+    // a0 per step through the hardened row, 1 - d = 1e-7 (spring_rows.cpp): the motor holds within it.
+    const double a0 = 1.0 * kGravity * 0.5 / (1.0 / 3);
+    EXPECT_NEAR(speed.real(), 1.0, 2 * h * 1e-7 * a0);
+  }
+}
+
 }  // namespace
