@@ -156,12 +156,13 @@ std::string Lowering::rigid_solimp() {
 }
 
 // What only MuJoCo's compiler knows, from one draft compile: mesh bodies' mass properties (written as
-// explicit inertials, so the file needs no exactmeshinertia, which 3.2.5 removed) and, for flexible loop
-// closures, bodies' inverse-inertia estimates (dA).
+// explicit inertials, so the file needs no exactmeshinertia, which 3.2.5 removed), for flexible loop
+// closures, bodies' inverse-inertia estimates (dA), and with velocity motors the model's own mean inertia.
 void Lowering::finish_with_draft(Element& root) {
   std::vector<Element*> mesh_bodies;
   for (const auto& [node, mass] : mass_on_geoms_) mesh_bodies.push_back(body_element_.at(node));
-  if ((soft_equalities_.empty() && mesh_bodies.empty()) || sink_.has_errors()) return;
+  const bool references = !velocity_motors_.empty();
+  if ((soft_equalities_.empty() && mesh_bodies.empty() && !references) || sink_.has_errors()) return;
   const DraftModel draft(root, options_.output_dir);
   for (const std::string& text : draft.warnings()) {  // MuJoCo's own words, at the root model
     sink_.report(fe::DiagCode::MuJoCoWarning,
@@ -175,6 +176,7 @@ void Lowering::finish_with_draft(Element& root) {
     return;
   }
   draft.write_inertials(mesh_bodies);
+  if (references) write_mean_inertia(root, *draft.model());
   const SoftEqualityResult r = apply_soft_equalities(draft, soft_equalities_, options_.timestep,
                                                      options_.mujoco == EmitOptions::MuJoCo::V3);
   for (const std::string& e : r.unstable) {

@@ -133,6 +133,7 @@ class Lowering {
   void emit_distance_mates(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
   void finish_with_draft(Element& root);
+  static void write_mean_inertia(Element& root, const mjModel& draft);  // velocity_motors.cpp
   void stiffen_equalities(Element& root);
   std::string rigid_solref() const;
   static std::string rigid_solimp();

@@ -5,6 +5,7 @@
 // friction loss holds the two together with at most (max - min)/2; a constant force (max + min)/2 on the
 // motor joint centres that band on [min, max].
 #include <cmath>
+#include <string_view>
 
 #include "mjcf_emitter/lowering.h"
 
@@ -84,6 +85,24 @@ void Lowering::emit_velocity_motor(Element& root, const sn::Interaction1D& i, co
         .set("biasprm", number(centre) + " 0 0");
     ++actuator_count_;
   }
+}
+
+// MuJoCo divides its solvers' stopping tests (main and noslip) by the model's mean diagonal inertia. The
+// reference joints weigh a billion times what they drive and would inflate that mean as much, so the
+// solvers stopped before converging (a 7-link arm of motors sagged; the runtime's hardened rows were
+// solved loosely). `<statistic meaninertia>` gives MuJoCo the mean over the model's own degrees of freedom.
+void Lowering::write_mean_inertia(Element& root, const mjModel& draft) {
+  constexpr std::string_view kSuffix = "/reference";
+  double sum = 0;
+  int count = 0;
+  for (int j = 0; j < draft.njnt; ++j) {
+    const std::string_view joint_name(draft.names + draft.name_jntadr[j]);
+    if (joint_name.ends_with(kSuffix)) continue;
+    const int dofs = draft.jnt_type[j] == mjJNT_FREE ? 6 : draft.jnt_type[j] == mjJNT_BALL ? 3 : 1;
+    for (int k = 0; k < dofs; ++k) sum += draft.dof_M0[draft.jnt_dofadr[j] + k];
+    count += dofs;
+  }
+  if (count > 0 && sum > 0) root.add("statistic").set("meaninertia", sum / count);
 }
 
 bool Lowering::has_range_input(int interaction) const {

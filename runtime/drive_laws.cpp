@@ -39,10 +39,11 @@ void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws, b
     if (law.kind == mjcf::RuntimeLaw::Kind::Engine) m->actuator_biasprm[law.actuators[0] * mjNBIAS + 2] = 0;
     laws_.push_back(std::move(law));
   }
+  if (between_steps) springs_.take_over_noslip(m);
 }
 
 void DriveLaws::apply(mjModel* m, mjData* d) {
-  if (!springs_.empty()) springs_.write_rows(m, d);
+  if (!springs_.empty()) springs_.write_rows(m, d);  // springs' rows, hardened friction rows
   for (const Law& law : laws_) {
     switch (law.kind) {
       case mjcf::RuntimeLaw::Kind::Engine: {

@@ -8,10 +8,10 @@ namespace openplx::runtime {
 namespace {
 
 // The fraction of MuJoCo's softness a hardened friction row keeps. A row leaks h (1 - d) of the acceleration
-// a0 it holds back per step, 1 - d = 1e-4 at MuJoCo's stiffest; this leaves 1e-7. Harder rows (1e-4 and
-// below, measured) leave the Newton solver's Hessian too ill-conditioned beside the motors' 1e9 reference
-// inertias: its stopping test passes early and the springs' rows are solved worse than the drives gain.
-constexpr double kHardenedSoftness = 1e-3;
+// a0 it holds back per step, 1 - d = 1e-4 at MuJoCo's stiffest; this leaves 1e-8. Harder rows (1e-6 and
+// below, measured on a 7-link arm of motors) gain nothing: the Newton solver's Hessian, beside the motors'
+// 1e9 reference inertias, loses that precision.
+constexpr double kHardenedSoftness = 1e-4;
 
 }  // namespace
 
@@ -42,16 +42,16 @@ bool SpringRows::resolve(mjModel* m, const mjcf::RuntimeLaw& law) {
   m->dof_damping[dof] = std::max(0.0, m->dof_damping[dof] - law.joint_damping);
   m->tendon_frictionloss[t] =
       1;  // any positive value makes mj_step1 build the row; write_rows sets its bound
-  // MuJoCo's noslip (emitted for friction-row drives) re-solves every friction row without its softness,
-  // which would make this row a rigid servo: the runtime does noslip's work on the other rows instead.
-  if (m->opt.noslip_iterations > 0) {
-    m->opt.noslip_iterations = 0;
-    harden_other_friction_rows_ = true;
-  }
   if (spring_of_tendon_.empty()) spring_of_tendon_.assign(static_cast<size_t>(m->ntendon), -1);
   spring_of_tendon_[static_cast<size_t>(t)] = static_cast<int>(springs_.size());
   springs_.push_back(std::move(s));
   return true;
+}
+
+void SpringRows::take_over_noslip(mjModel* m) {
+  if (m->opt.noslip_iterations <= 0 || springs_.empty()) return;
+  harden_other_friction_rows_ = true;
+  m->opt.noslip_iterations = 0;
 }
 
 // SPOOK (Lacoursiere): with relaxation time tau, Y = 1 / (1 + 4 tau / h), the row satisfies
@@ -62,12 +62,13 @@ bool SpringRows::resolve(mjModel* m, const mjcf::RuntimeLaw& law) {
 void SpringRows::write_rows(mjModel* m, mjData* d) {
   for (Spring& s : springs_) s.row = -1;
   for (int r = d->ne; r < d->ne + d->nf; ++r) {
-    const int spring =
-        d->efc_type[r] == mjCNSTR_FRICTION_TENDON ? spring_of_tendon_[static_cast<size_t>(d->efc_id[r])] : -1;
+    const bool tendon = d->efc_type[r] == mjCNSTR_FRICTION_TENDON && !spring_of_tendon_.empty();
+    const int spring = tendon ? spring_of_tendon_[static_cast<size_t>(d->efc_id[r])] : -1;
     if (spring >= 0) {
       springs_[static_cast<size_t>(spring)].row = r;
-    } else if (harden_other_friction_rows_) {
-      // Noslip's work, nearly: the row without most of its softness.
+    } else if (harden_other_friction_rows_ && d->efc_R[r] > kHardenedSoftness * d->efc_diagApprox[r]) {
+      // Noslip's work, nearly: the row without most of its softness (once per mj_step1: MuJoCo's own R is
+      // 1e-4 of diagApprox, a hardened one well below kHardenedSoftness of it).
       d->efc_R[r] *= kHardenedSoftness;
       d->efc_D[r] = 1 / d->efc_R[r];
     }

@@ -25,7 +25,11 @@ class SpringRows {
   // After mj_step2: each spring actuator's force (and its actuatorfrc sensors) = the centre + the row's
   // force.
   void add_row_forces(const mjModel* m, mjData* d) const;
-  bool empty() const { return springs_.empty(); }
+  // A model with friction-row drives asks MuJoCo for noslip, which would re-solve the springs' rows without
+  // their softness (rigid servos). With springs here, the runtime turns noslip off and hardens the other
+  // friction rows itself (write_rows).
+  void take_over_noslip(mjModel* m);
+  bool empty() const { return springs_.empty() && !harden_other_friction_rows_; }
 
  private:
   struct Spring {
@@ -35,11 +39,8 @@ class SpringRows {
     int row = -1;              // its friction row in this step, -1 when MuJoCo built none
   };
   std::vector<Spring> springs_;
-  std::vector<int> spring_of_tendon_;  // per tendon: its spring, -1
-  // The model asked for noslip (it has friction-row drives: motors, brakes, clutches). Noslip would re-solve
-  // the springs' rows without their softness, so the runtime turns it off and makes every other friction
-  // row as hard as noslip would have (write_rows).
-  bool harden_other_friction_rows_ = false;
+  std::vector<int> spring_of_tendon_;        // per tendon: its spring, -1
+  bool harden_other_friction_rows_ = false;  // take_over_noslip
 };
 
 }  // namespace openplx::runtime

@@ -418,9 +418,9 @@ TEST(SpringRow, SpringAndVelocityMotorInOneModelAreBothExact) {
     EXPECT_NEAR(r.v, 0.0, 1e-3);
     EXPECT_LE(r.largest[0], 200 * (1 + 1e-12));
     // The arm's weight (up to m g L / 2 = 4.9 N m, within the motor's 10, on I = m L^2 / 3) leaks h (1 - d)
-    // a0 per step through the hardened row, 1 - d = 1e-7 (spring_rows.cpp): the motor holds within it.
+    // a0 per step through the hardened row, 1 - d = 1e-8 (spring_rows.cpp): the motor holds within it.
     const double a0 = 1.0 * kGravity * 0.5 / (1.0 / 3);
-    EXPECT_NEAR(speed.real(), 1.0, 2 * h * 1e-7 * a0);
+    EXPECT_NEAR(speed.real(), 1.0, 2 * h * 1e-8 * a0);
   }
 }
 
