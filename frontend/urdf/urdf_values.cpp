@@ -51,9 +51,13 @@ std::optional<std::vector<double>> numbers(const std::string& text, std::string&
     const size_t stop = std::min(text.find_first_of(kSpace, begin), text.size());
     const std::string_view word(text.data() + begin, stop - begin);
     begin = stop;
+    // urdfdom (std::stod) and MuJoCo (strtod) read a leading '+', which std::from_chars does not.
+    std::string_view digits = word;
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '+' && digits[1] != '-')
+      digits.remove_prefix(1);
     double v = 0;
-    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
-    if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) {
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    if (error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(v)) {
       bad = std::string(word);
       return std::nullopt;
     }

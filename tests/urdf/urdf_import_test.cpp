@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "openplx/runtime/simulation.h"
@@ -88,6 +90,44 @@ TEST(UrdfImport, MissingMeshesAreErrorsAtTheirMeshElements) {
               std::string::npos)
         << line << "\n"
         << err;
+  }
+}
+
+// Numbers as urdfdom and MuJoCo read them: a leading '+' (ROS-Industrial and OEM packages write
+// `upper="+3"`, `xyz="0 +0.1 0"`) and exponents convert; a lone or doubled sign is still an error at its
+// element.
+TEST(UrdfImport, LeadingPlusSignsAreNumbers) {
+  const openplx::testing::ScratchDir scratch;
+  auto robot = [](const std::string& xyz, const std::string& upper) {
+    return "<robot name=\"plus\">\n"
+           "  <link name=\"base\"><inertial><mass value=\"1\"/>"
+           "<inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+           "  <link name=\"arm\"><inertial><mass value=\"+1e0\"/>"
+           "<inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+           "  <joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/>\n"
+           "    <origin xyz=\"" +
+           xyz +
+           "\"/><axis xyz=\"0 0 1\"/>\n"
+           "    <limit lower=\"-1\" upper=\"" +
+           upper +
+           "\" effort=\"10\" velocity=\"1\"/></joint>\n"
+           "</robot>\n";
+  };
+  const fs::path good = scratch / "good.urdf", out = scratch / "good.xml";
+  std::ofstream(good) << robot("0 +0.1 0", "+3");
+  std::string err;
+  ASSERT_EQ(cli({good.string(), "-o", out.string(), "--check"}, &err), 0) << err;
+  std::ifstream in(out);
+  const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(xml.find("range=\"-1 3\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("pos=\"0 0.1 0\""), std::string::npos) << xml;
+  for (const std::string& upper : {"+", "++3", "+-3", "3+"}) {
+    const fs::path bad = scratch / "bad.urdf";
+    std::ofstream(bad) << robot("0 0 0", upper);
+    EXPECT_EQ(cli({bad.string(), "-o", (scratch / "bad.xml").string()}, &err), openplx::cli::kExitInputError)
+        << upper;
+    EXPECT_NE(err.find(bad.string() + ":6:"), std::string::npos) << upper << "\n" << err;
+    EXPECT_NE(err.find("is not a number (`" + upper + "`)"), std::string::npos) << err;
   }
 }
 
