@@ -5,11 +5,20 @@
 
 namespace openplx::frontend {
 
-std::optional<std::string> import_plugin_source(const std::string& path, const std::string& model_name,
-                                                std::string& error) {
+std::string lowercase_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+bool is_urdf_extension(const std::string& lowercase_extension) {
+  return lowercase_extension == ".urdf" || lowercase_extension == ".xacro";
+}
+
+std::optional<std::string> import_plugin_source(const std::string& path, const std::string& model_name,
+                                                std::string& error) {
+  const std::string extension = lowercase_extension(path);
   // Path strings take no escapes, so a path with a quote cannot be written back as one.
   if (path.find('"') != std::string::npos || path.find('\n') != std::string::npos) {
     error = "cannot import a file whose path contains a quote or a newline: " + path;

@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "frontend/bundles.h"
+#include "frontend/import_plugins.h"
 #include "frontend/large_stack.h"
 
 namespace openplx::frontend {
@@ -20,10 +21,7 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
   // A URDF given directly is read as a one-line document importing it, rooted at a model of the robot's name
   // (the file's stem), so the command line and the runtime take robots like any OpenPLX file.
   const fs::path file(request.path);
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (!request.text && extension == ".urdf") {
+  if (!request.text && is_urdf_extension(lowercase_extension(request.path))) {
     const std::string robot = file.stem().string();
     const std::string text = "import @\"" + fs::absolute(file).lexically_normal().generic_string() + "\"\n`" +
                              robot + "_robot` is `" + robot + "`\n";

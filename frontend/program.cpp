@@ -310,7 +310,7 @@ void Program::process_imports(DocumentInfo* doc) {
       sink_.report(DiagCode::ImportNotFound, decl.range, "Could not find imported file " + path);
       continue;
     }
-    const std::string extension = fs::path(path).extension().string();
+    const std::string extension = lowercase_extension(path);  // `robot.URDF` is a URDF too
     const std::string alias = decl.alias ? to_string(*decl.alias) : fs::path(path).stem().string();
     if (extension == ".openplx") {
       DocumentInfo* imported = find_loaded(path);
@@ -336,7 +336,7 @@ void Program::process_imports(DocumentInfo* doc) {
     std::optional<std::string> source;
     std::vector<std::string> names{alias};
     std::optional<UrdfSource> urdf;
-    if (extension == ".urdf") {
+    if (is_urdf_extension(extension)) {
       urdf = read_urdf(path, alias, decl.range);
       if (!urdf) continue;
       source = std::move(urdf->text);

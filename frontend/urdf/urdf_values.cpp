@@ -41,29 +41,104 @@ const std::map<std::string, std::map<std::string, int>>& numeric_attributes() {
   return table;
 }
 
-// The numbers of `text`, or nullopt with the first word that is not a finite number in `bad`.
-// Words split by hand: a std::istringstream per attribute cost more than the rest of the import.
-std::optional<std::vector<double>> numbers(const std::string& text, std::string& bad) {
+constexpr std::string_view kSpace = " \t\n\v\f\r";  // what `>>` skips in the classic locale
+
+bool digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+// Whether `word` is one number as urdfdom's strToDouble reads it (`std::stringstream >> double` in the
+// classic locale, which must then reach the end): leading white space, a sign, digits with at most one point
+// (`5.`, `.5`), an exponent after a digit (`1e-3`, `1E+2`), and nothing after it, not even a space. Checked
+// by hand: a std::istringstream per attribute cost more than the rest of the import.
+bool urdfdom_number(std::string_view word) {
+  size_t i = std::min(word.find_first_not_of(kSpace), word.size());
+  if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+  size_t digits = 0;
+  for (; i < word.size() && digit(word[i]); ++i) ++digits;
+  if (i < word.size() && word[i] == '.') {
+    for (++i; i < word.size() && digit(word[i]); ++i) ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < word.size() && (word[i] == 'e' || word[i] == 'E')) {
+    ++i;
+    if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+    size_t exponent = 0;
+    for (; i < word.size() && digit(word[i]); ++i) ++exponent;
+    if (exponent == 0) return false;
+  }
+  return i == word.size();
+}
+
+// The value of a word urdfdom_number accepted, or nullopt when it overflows (urdfdom rejects that too; a
+// number too small for a double is read as zero or a subnormal, as urdfdom does).
+std::optional<double> urdfdom_value(std::string_view word) {
+  word.remove_prefix(std::min(word.find_first_not_of(kSpace), word.size()));
+  if (word[0] == '+') word.remove_prefix(1);  // std::from_chars reads no '+'
+  double v = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), v);
+  if (error == std::errc::result_out_of_range) {
+    v = std::strtod(std::string(word).c_str(), nullptr);
+  } else if (error != std::errc() || end != word.data() + word.size()) {
+    return std::nullopt;
+  }
+  if (!std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+// The numbers of `text` as urdfdom reads them, or nullopt with the first word that is not a finite number
+// in `bad`. A list (xyz, rpy, size, scale, rgba) is split at spaces only, empty words skipped, so a tab or a
+// line break between two numbers leaves one word that is no number; a single value is the whole text.
+std::optional<std::vector<double>> numbers(const std::string& text, int count, std::string& bad) {
   std::vector<double> values;
-  constexpr std::string_view kSpace = " \t\n\v\f\r";  // what `>>` skips in the classic locale
-  for (size_t begin = text.find_first_not_of(kSpace); begin != std::string::npos;
-       begin = text.find_first_not_of(kSpace, begin)) {
-    const size_t stop = std::min(text.find_first_of(kSpace, begin), text.size());
-    const std::string_view word(text.data() + begin, stop - begin);
-    begin = stop;
-    // urdfdom (std::stod) and MuJoCo (strtod) read a leading '+', which std::from_chars does not.
-    std::string_view digits = word;
-    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '+' && digits[1] != '-')
-      digits.remove_prefix(1);
-    double v = 0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-    if (error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(v)) {
-      bad = std::string(word);
-      return std::nullopt;
-    }
-    values.push_back(v);
+  auto read = [&](std::string_view word) {
+    const std::optional<double> v = urdfdom_number(word) ? urdfdom_value(word) : std::nullopt;
+    if (!v) bad = std::string(word);
+    if (v) values.push_back(*v);
+    return v.has_value();
+  };
+  if (count == 1) {
+    if (!read(text)) return std::nullopt;
+    return values;
+  }
+  for (size_t begin = 0; begin <= text.size();) {
+    const size_t stop = std::min(text.find(' ', begin), text.size());
+    if (stop > begin && !read(std::string_view(text).substr(begin, stop - begin))) return std::nullopt;
+    begin = stop + 1;
   }
   return values;
+}
+
+// Why `word` is no number, when a reader might not see it: white space urdfdom does not take.
+std::string why_not_a_number(const std::string& word) {
+  const size_t first = word.find_first_not_of(kSpace);
+  if (first == std::string::npos) return word.empty() ? ": it is empty" : ": it is blank";
+  const std::string_view rest = std::string_view(word).substr(first);
+  if (rest.find_first_of(kSpace) == std::string_view::npos) return "";
+  if (rest.find_first_not_of(kSpace, rest.find_first_of(kSpace)) == std::string_view::npos)
+    return ": urdfdom reads nothing after a number, not even a space";
+  return ": URDF separates numbers by spaces only; urdfdom reads a tab or a line break as part of a number";
+}
+
+// `text` with tabs, line breaks and other control characters shown as escapes, for a one-line message.
+std::string shown(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", static_cast<unsigned char>(c));
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out;
 }
 
 // The shapes a <geometry> can hold (URDF 1.1 included) and the attributes each requires.
@@ -142,13 +217,13 @@ bool UrdfDocument::check_values() {
       const char* value = e->Attribute(attribute.c_str());
       if (!value) continue;
       std::string bad;
-      const std::optional<std::vector<double>> v = numbers(value, bad);
+      const std::optional<std::vector<double>> v = numbers(value, count, bad);
       if (!v || static_cast<int>(v->size()) != count) {
         findings_.push_back({true,
                              offset_of(e),
-                             "<" + tag + "> " + attribute + "=\"" + value + "\" is not " +
+                             "<" + tag + "> " + attribute + "=\"" + shown(value) + "\" is not " +
                                  (count == 1 ? "a number" : std::to_string(count) + " numbers") +
-                                 (v ? "" : " (`" + bad + "`)"),
+                                 (v ? "" : " (`" + shown(bad) + "`" + why_not_a_number(bad) + ")"),
                              {}});
       }
     }
@@ -156,7 +231,7 @@ bool UrdfDocument::check_values() {
     // rotation as rpy.
     if (tag == "origin" && e->Attribute("quat_xyzw")) {
       std::string bad;
-      const std::optional<std::vector<double>> q = numbers(e->Attribute("quat_xyzw"), bad);
+      const std::optional<std::vector<double>> q = numbers(e->Attribute("quat_xyzw"), 4, bad);
       if (e->Attribute("rpy")) {
         findings_.push_back({true, offset_of(e), "<origin> has both rpy and quat_xyzw; URDF allows one", {}});
       } else if (q && q->size() == 4) {
