@@ -37,6 +37,9 @@ struct EmitOptions {
   // --exclude-initial-overlaps: an <exclude> for every pair of bodies whose collision geometry overlaps at
   // the initial state, found by compiling and forwarding a draft of the document in MuJoCo (a note for each).
   bool exclude_initial_overlaps = false;
+  // --urdf-exact-mesh-mass: a URDF link without <inertial> takes its mesh volumes exactly, as OpenPLX bodies
+  // do, instead of as MuJoCo 2.2.2's URDF importer computes them (its legacy formula; README "URDF").
+  bool urdf_exact_mesh_mass = false;
 };
 
 struct Emitted {

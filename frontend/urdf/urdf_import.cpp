@@ -230,8 +230,14 @@ void inertial(Context& c, const urdf::Link& link) {
   }
   c.w.from(at);
   c.w.line("        inertia.mass: " + num(i.mass));
+  // A mass of 0 is "computed from the geometry" in OpenPLX but massless in URDF (and MuJoCo's importer).
+  if (i.mass == 0) c.w.line("        urdf_mass is String: \"as_written\"");
+  // From <inertia>: what the emitter finds wrong with the tensor it writes is reported there.
+  const XMLElement* inertia = UrdfDocument::child(at, "inertia");
+  c.w.from(inertia ? inertia : at);
   c.w.line("        inertia.tensor: Physics3D.Bodies.Inertia.symmetric_tensor(" + vec(tensor.diagonal()) +
            ", " + num(tensor(0, 1)) + ", " + num(tensor(0, 2)) + ", " + num(tensor(1, 2)) + ")");
+  c.w.from(at);
   c.w.transform("kinematics.local_cm_transform", to_eigen(i.origin.position), to_eigen(i.origin.rotation),
                 "        ");
 }
@@ -505,7 +511,13 @@ UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text,
       w.transform("kinematics.local_transform", t.translation(), Eigen::Quaterniond(t.rotation()),
                   "        ");
     }
-    if (link->inertial) inertial(c, *link);
+    if (link->inertial) {
+      inertial(c, *link);
+    } else {
+      // No <inertial>: the mass MuJoCo's URDF importer gives the link, from its collision geometry (README
+      // "URDF", mass laws). The emitter reads this marker; OpenPLX's own bodies never carry it.
+      w.line("        urdf_mass is String: \"collisions\"");
+    }
     // Geometries keep their URDF names (MuJoCo's compiler drops them) behind a prefix that cannot clash with
     // a body attribute: `collision_<name>`, or `collision_<index>` when unnamed or named twice.
     std::set<std::string> taken;

@@ -22,12 +22,15 @@ using namespace openplx::urdf_survey;
 namespace {
 
 const char* kUsage =
-    "usage: urdf-survey [--timeout SECONDS] [--converter PATH] [--keep DIR] FOLDER...\n"
+    "usage: urdf-survey [--timeout SECONDS] [--converter PATH] [--keep DIR] [--stub-missing-meshes] "
+    "FOLDER...\n"
     "  every .urdf under each FOLDER through openplx2mjcf (FILE -o OUT --check, then MuJoCo loads OUT) and\n"
     "  through MuJoCo 2.2.2's own URDF compiler; per body: mass, principal inertia (relative 1e-9) and "
     "world\n"
     "  pose at the zero configuration (1e-9). package:// names resolve through ROS_PACKAGE_PATH as in ROS.\n"
     "  --timeout  per file, for each importer (default 120)\n"
+    "  --stub-missing-meshes  give both importers a copy in which every missing mesh file is one small cube\n"
+    "             (so robots shipped without meshes still compare; see stub_meshes.h)\n"
     "  --keep     write both models of every file under DIR (default: a temporary folder, removed)\n";
 
 std::string lower(std::string s) {
@@ -65,6 +68,7 @@ int main(int argc, char** argv) {
       for (size_t k = i + 3; k + 1 < args.size(); k += 2) {
         if (args[k] == "--converter") options.converter = args[k + 1];
         if (args[k] == "--timeout") options.converter_timeout = std::atof(args[k + 1].c_str());
+        if (args[k] == "--stub-missing-meshes") options.stub_missing_meshes = args[k + 1] == "1";
       }
       survey_file(args[i + 1], args[i + 2], options);
       std::fflush(stdout);
@@ -73,6 +77,8 @@ int main(int argc, char** argv) {
       timeout = std::atof(args[++i].c_str());
     } else if (a == "--converter" && has_value) {
       options.converter = args[++i];
+    } else if (a == "--stub-missing-meshes") {
+      options.stub_missing_meshes = true;
     } else if (a == "--keep" && has_value) {
       keep = args[++i];
     } else if (a == "-h" || a == "--help") {
@@ -102,7 +108,10 @@ int main(int argc, char** argv) {
     work_root = keep;
     fs::create_directories(work_root);
   }
-  std::cout << "converter: " << options.converter << "\nROS_PACKAGE_PATH: "
+  std::cout << "converter: " << options.converter
+            << (options.stub_missing_meshes ? "\nmissing mesh files: stubbed by a 2 cm cube in both importers"
+                                            : "")
+            << "\nROS_PACKAGE_PATH: "
             << (std::getenv("ROS_PACKAGE_PATH") ? std::getenv("ROS_PACKAGE_PATH") : "(unset)") << "\n";
 
   std::vector<FileResult> everything;
@@ -126,7 +135,8 @@ int main(int argc, char** argv) {
       fs::create_directories(work);
       const ChildResult run =
           run_child({self.string(), "--one", fs::absolute(urdf).string(), work.string(), "--converter",
-                     options.converter, "--timeout", std::to_string(timeout)},
+                     options.converter, "--timeout", std::to_string(timeout), "--stub-missing-meshes",
+                     options.stub_missing_meshes ? "1" : "0"},
                     2 * timeout + 30);
       FileResult r =
           parse_report(fs::relative(urdf, folder).string(), run.output, ending(run, 2 * timeout + 30));

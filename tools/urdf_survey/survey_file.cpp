@@ -10,6 +10,7 @@
 
 #include "tools/urdf_survey/child_process.h"
 #include "tools/urdf_survey/mujoco_urdf.h"
+#include "tools/urdf_survey/stub_meshes.h"
 
 namespace openplx::urdf_survey {
 
@@ -47,7 +48,9 @@ mjModel* load_ours(const fs::path& urdf, const fs::path& work_dir, const FileOpt
   const ChildResult run =
       run_child({options.converter, urdf.string(), "-o", out.string(), "--check"}, options.converter_timeout);
   if (run.timed_out) {
-    report("OURS", "refused", "timeout after " + std::to_string(options.converter_timeout) + " s");
+    char seconds[32];
+    std::snprintf(seconds, sizeof(seconds), "%g s", options.converter_timeout);
+    report("OURS", "refused", std::string("timeout after ") + seconds);
     return nullptr;
   }
   if (run.signal != 0) {
@@ -161,7 +164,13 @@ void compare(const mjModel* ours, const mjModel* theirs) {
 
 }  // namespace
 
-void survey_file(const fs::path& urdf, const fs::path& work_dir, const FileOptions& options) {
+void survey_file(const fs::path& original, const fs::path& work_dir, const FileOptions& options) {
+  fs::path urdf = original;
+  if (options.stub_missing_meshes) {
+    int stubbed = 0;
+    urdf = stub_missing_meshes(original, work_dir, stubbed);
+    if (stubbed > 0) report("STUBS", std::to_string(stubbed), "");
+  }
   mjModel* ours = load_ours(urdf, work_dir, options);
   std::string error;
   mjModel* theirs = load_with_mujoco(urdf, work_dir, error);

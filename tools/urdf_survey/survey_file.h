@@ -13,6 +13,7 @@ namespace openplx::urdf_survey {
 struct FileOptions {
   std::string converter;  // path of openplx2mjcf
   double converter_timeout = 60;
+  bool stub_missing_meshes = false;  // see stub_meshes.h
 };
 
 // Prints the OURS, MUJOCO and PARITY lines for `urdf`, using `work_dir` for the files it writes.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <sstream>
 
 namespace openplx::urdf_survey {
@@ -24,7 +25,9 @@ FileResult parse_report(const std::string& name, const std::string& output, cons
   std::stringstream lines(output);
   for (std::string line; std::getline(lines, line);) {
     const std::vector<std::string> f = split_tabs(line);
-    if (f.size() >= 2 && f[0] == "OURS") {
+    if (f.size() >= 2 && f[0] == "STUBS") {
+      r.stubbed_meshes = std::atoi(f[1].c_str());
+    } else if (f.size() >= 2 && f[0] == "OURS") {
       saw_ours = true;
       r.ours = f[1] == "loaded";
       r.ours_reason = f.size() > 2 ? f[2] : "";
@@ -47,7 +50,9 @@ FileResult parse_report(const std::string& name, const std::string& output, cons
 }
 
 std::string file_line(const FileResult& r) {
-  std::string line = r.name + "\n    ours: " + (r.ours ? "loaded" : "refused: " + r.ours_reason);
+  std::string line = r.name;
+  if (r.stubbed_meshes > 0) line += "  (" + std::to_string(r.stubbed_meshes) + " missing mesh files stubbed)";
+  line += "\n    ours: " + (r.ours ? "loaded" : "refused: " + r.ours_reason);
   line += "\n    MuJoCo: " + (r.mujoco ? std::string("loaded") : "refused: " + r.mujoco_reason);
   line += "\n    parity: " + (r.parity.empty() ? std::string("n/a") : r.parity);
   return line;
@@ -58,6 +63,8 @@ std::string reason_group(const std::string& reason) {
   // Our diagnostics start with the file and position; MuJoCo's with "Error: ".
   if (size_t at = text.find(": error: "); at != std::string::npos) text = text.substr(at + 9);
   if (text.rfind("Error: ", 0) == 0) text = text.substr(7);
+  // MuJoCo names the object it was compiling; which one is a particular, not a reason.
+  if (size_t at = text.find(" Object name = "); at != std::string::npos) text = text.substr(0, at);
   std::string out;
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];

@@ -14,7 +14,8 @@ struct FileResult {
   bool ours = false, mujoco = false;
   std::string ours_reason, mujoco_reason;
   bool compared = false, mass_ok = false, pose_ok = false, inertia_ok = false;
-  std::string parity;  // "ok (...)" or the mismatches
+  std::string parity;      // "ok (...)" or the mismatches
+  int stubbed_meshes = 0;  // --stub-missing-meshes: how many mesh files the copy replaced
 };
 
 // Reads the child's OURS / MUJOCO / PARITY lines; whatever is missing is put down to how the child ended
