@@ -1,8 +1,9 @@
 // Lowering pass, bodies: <body> with its pose, <inertial> and <geom>s, world geoms, mocap and free bodies.
 #include "mjcf_emitter/lowering.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
+
+#include "frontend/urdf/mujoco_principal_inertia.h"
 
 namespace openplx::mjcf {
 
@@ -38,7 +39,8 @@ void Lowering::emit_geom_classes(Element& root) {
       .add("geom")
       .set("group", 2)
       .set("contype", 0)
-      .set("conaffinity", 0);
+      .set("conaffinity", 0)
+      .set("density", 0);  // never mass, also where MuJoCo's compiler sums the geoms (static bodies)
   defaults.add("default").set("class", geom_class("collision")).add("geom").set("group", 3);
 }
 
@@ -122,28 +124,32 @@ double Lowering::density_of(const sn::Geometry& g) {
   return g.material >= 0 ? view_.materials[g.material].density : 1000.0;
 }
 
+// Mass properties (README "Bodies" and "URDF"): the model's tensor when given; else from the geometry that
+// counts for mass at its material's density (visual geometry never counts), scaled to the given mass.
+// Meshes: MuJoCo computes their volumes in a draft (finish_with_draft), exactly, or for a URDF link
+// without <inertial> (the URDF importer's `urdf_mass` marker, BodyProperties::urdf_mass) with MuJoCo
+// 2.2.2's default formula, as MuJoCo's own URDF importer does (--urdf-exact-mesh-mass: exactly).
 void Lowering::emit_inertial(Element& body, int node) {
   const sn::FrameNode& n = view_.nodes[node];
-  if (!n.body.dynamic) return;  // a static body needs no mass
+  using UrdfMass = sn::BodyProperties::UrdfMass;
+  // A URDF <inertial> of mass 0: massless, as MuJoCo's importer takes it (OpenPLX's 0 would mean "computed").
+  const bool massless = n.body.urdf_mass == UrdfMass::AsWritten && !(n.body.mass > 0);
+  const int edge = edges_[node].mate;
+  const bool welded = edge >= 0 && view_.mates[edge].type == sn::MateType::Lock;
+  if (!n.body.dynamic || (massless && welded)) {
+    // A static body needs no mass: MuJoCo sums its collision geoms (visual ones have density 0), as its
+    // URDF importer does for a root link; a massless link stays massless.
+    if (massless)
+      body.add("inertial").set("pos", n.body.cm.position).set("mass", 0.0).set("diaginertia", "0 0 0");
+    return;
+  }
   const bool tensor_given = !n.body.inertia.isZero();
   if (n.body.mass > 0 && tensor_given) {
     const Eigen::Matrix3d r = n.body.cm.rotation.toRotationMatrix();
-    // The tensor turned into the body's axes: MJCF takes fullinertia or a quat, never both.
-    const Eigen::Matrix3d i = r * n.body.inertia * r.transpose();
-    body_mass_[node] = {n.body.mass, n.body.cm.position, i};
-    Element& inertial = body.add("inertial").set("pos", n.body.cm.position).set("mass", n.body.mass);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(i);
-    if (principal.eigenvalues().minCoeff() <= 0) {
-      // An ideal rod (a zero principal moment): MuJoCo takes it only as principal axes and moments, not as a
-      // full tensor (which must be positive definite).
-      Eigen::Matrix3d axes = principal.eigenvectors();
-      if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
-      const Eigen::Quaterniond q(axes);
-      inertial.set("quat", numbers({q.w(), q.x(), q.y(), q.z()}))
-          .set("diaginertia", principal.eigenvalues().cwiseMax(0.0).eval());
-      return;
-    }
-    inertial.set("fullinertia", full_inertia(i));
+    body_mass_[node] = {n.body.mass, n.body.cm.position, r * n.body.inertia * r.transpose()};
+    write_inertial(body, n.body.mass, n.body.cm.position, n.body.cm.rotation, n.body.inertia,
+                   n.body.tensor_where.file != fe::kNoFile ? n.body.tensor_where : n.where,
+                   "`" + n.path + ".inertia.tensor`");
     return;
   }
   std::vector<std::pair<const sn::Geometry*, double>> parts;
@@ -154,19 +160,22 @@ void Lowering::emit_inertial(Element& body, int node) {
     meshes = meshes || !unit_density_properties(*g);
   }
   if (meshes) {
-    // The mass goes on the geoms; the draft compile (finish_with_draft) turns it into an explicit inertial
-    // with exact mesh volumes. For motor gains below, estimate the body as a sphere of radius 0.1 m.
+    // The mass goes on the geoms; the draft compile (finish_with_draft) turns it into an explicit inertial.
+    // For motor gains below, estimate the body as a sphere of radius 0.1 m.
     mass_on_geoms_[node] = n.body.mass;
+    if (n.body.urdf_mass == UrdfMass::Collisions && !options_.urdf_exact_mesh_mass)
+      legacy_mesh_mass_.insert(node);
     const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
     body_mass_[node] = {mass, Eigen::Vector3d::Zero(), 0.4 * mass * 0.01 * Eigen::Matrix3d::Identity()};
     return;
   }
   std::optional<MassProperties> p = combine(parts);
-  const int edge = edges_[node].mate;
-  if (!p && n.body.mass <= 0 && edge >= 0 && view_.mates[edge].type == sn::MateType::Lock) {
+  if (!p && n.body.mass <= 0 && welded) {
     return;  // a massless frame welded to its parent (a URDF tool frame): MuJoCo keeps it massless too
   }
   if (!p) {
+    // Also a URDF link without <inertial> or collision geometry on a moving joint, which MuJoCo's importer
+    // leaves massless and then refuses (widowx): the stand-in lets the robot load.
     const double mass = n.body.mass > 0 ? n.body.mass : 1.0;
     warn(n.where, "`" + n.path +
                       ".inertia` gives no tensor and the body has no geometry to compute one from; " +
@@ -183,7 +192,51 @@ void Lowering::emit_inertial(Element& body, int node) {
     p->mass = n.body.mass;
   }
   body_mass_[node] = *p;
-  body.add("inertial").set("pos", p->com).set("mass", p->mass).set("fullinertia", full_inertia(p->inertia));
+  write_inertial(body, p->mass, p->com, Eigen::Quaterniond::Identity(), p->inertia, n.where,
+                 "the inertia of `" + n.path + "` computed from its geometry");
+}
+
+// MuJoCo 2.2.2 diagonalises a fullinertia itself (mju_eig3), takes it only when the smallest of its moments
+// is at least mjMINVAL, and refuses moments that break A + B >= C exactly. The check runs on the numbers
+// MuJoCo will see: fullinertia for a tensor in the body's axes; principal moments and axes from the tensor in
+// its own frame where that frame is turned (as MuJoCo's URDF importer diagonalises the <inertia> it reads),
+// or where fullinertia would be refused (an ideal rod). Moments MuJoCo would refuse become their mean (its
+// balanceinertia), with a warning at the tensor, so the output always loads.
+void Lowering::write_inertial(Element& body, double mass, const Eigen::Vector3d& com,
+                              const Eigen::Quaterniond& axes, const Eigen::Matrix3d& tensor,
+                              fe::SourceRange where, const std::string& what) {
+  namespace mi = mujoco_inertia;
+  Element& inertial = body.add("inertial").set("pos", com).set("mass", mass);
+  const mi::Principal p = mi::principal_moments(tensor);
+  const bool turned = !(axes.w() == 1 && axes.x() == 0 && axes.y() == 0 && axes.z() == 0);
+  const bool accepted = !mi::negative(p.moments) && mi::triangle(p.moments);
+  if (!turned && accepted && p.moments[2] >= mjMINVAL) {
+    inertial.set("fullinertia", full_inertia(tensor));
+    return;
+  }
+  Eigen::Vector3d moments(p.moments[0], p.moments[1], p.moments[2]);
+  if (!accepted) {
+    double mean = moments.sum() / 3;
+    std::string done = "they were set to their mean " + number(mean) + " (MuJoCo's balanceinertia)";
+    if (!(mean > 0)) {
+      const double radius = std::cbrt(3 * mass / (4 * M_PI * 1000.0));
+      mean = 0.4 * mass * radius * radius;
+      done = "they were set to " + number(mean) + ", a solid sphere's of the same mass at water density";
+    }
+    warn(where,
+         what + ": its principal moments " + number(moments[0]) + ", " + number(moments[1]) + ", " +
+             number(moments[2]) + ", as MuJoCo 2.2.2 computes them, " +
+             (mi::negative(p.moments) ? "are not all positive"
+                                      : "break the triangle inequality A + B >= C, which MuJoCo checks "
+                                        "exactly and refuses") +
+             "; " + done);
+    moments.setConstant(mean);
+  }
+  const Eigen::Quaterniond q =
+      (axes * Eigen::Quaterniond(p.axes[0], p.axes[1], p.axes[2], p.axes[3])).normalized();
+  if (!(q.w() == 1 && q.x() == 0 && q.y() == 0 && q.z() == 0))
+    inertial.set("quat", numbers({q.w(), q.x(), q.y(), q.z()}));
+  inertial.set("diaginertia", moments);
 }
 
 void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Transform& pose, bool on_static) {
@@ -260,6 +313,8 @@ void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Trans
     it->second = 0;  // the whole given mass on the first geometry that counts
   } else if (g.in_mass && !on_static) {
     geom.set("density", density_of(g));
+  } else if (!g.in_mass && !g.visual && on_static) {
+    geom.set("density", 0.0);  // left out of mass (include_in_mass_properties: false)
   }
   emitted_geoms_.insert(g.path);
   parent.add(std::move(geom));

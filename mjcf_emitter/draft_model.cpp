@@ -10,7 +10,7 @@ namespace openplx::mjcf {
 
 namespace fs = std::filesystem;
 
-DraftModel::DraftModel(const Element& document, const std::string& dir) {
+DraftModel::DraftModel(const Element& document, const std::string& dir, bool exact_mesh_volumes) {
   const fs::path folder = dir.empty() ? fs::temp_directory_path() : fs::path(dir);
   // The pid keeps processes apart, the counter threads and calls of one process.
   static std::atomic<unsigned> counter{0};
@@ -18,7 +18,7 @@ DraftModel::DraftModel(const Element& document, const std::string& dir) {
                                   std::to_string(counter++) + ".xml");
   std::string text = document.to_string();
   // 2.2.2 takes mesh volumes from the meshes only with this flag (otherwise from an equivalent box).
-  if (const size_t at = text.find("<compiler "); at != std::string::npos)
+  if (const size_t at = text.find("<compiler "); exact_mesh_volumes && at != std::string::npos)
     text.insert(at + 10, "exactmeshinertia=\"true\" ");
   mj_ = mujoco_library(error_);
   if (!mj_) return;

@@ -1,7 +1,9 @@
-// The emitted document compiled once by MuJoCo 2.2.2 for numbers only MuJoCo's compiler knows: the mass
-// properties of bodies whose mass comes from meshes (computed with exact mesh volumes), and bodies' inverse
-// inertia estimates (body_invweight0) for soft equalities. The draft alone sets `exactmeshinertia`; the
-// output carries explicit inertials instead, so it needs no flag that MuJoCo 3.2.5 removed.
+// The emitted document compiled by MuJoCo 2.2.2 for numbers only MuJoCo's compiler knows: the mass
+// properties of bodies whose mass comes from meshes, and bodies' inverse inertia estimates (body_invweight0)
+// for soft equalities. Mesh volumes are exact (the draft alone sets `exactmeshinertia`) or, for URDF links
+// without <inertial>, MuJoCo's default legacy formula, as its URDF importer takes them: 2.2.2 sets the law
+// for a whole model, so those get a draft of their own. The output carries explicit inertials instead, so
+// it needs no flag that MuJoCo 3.2.5 removed, and loads with the same masses in MuJoCo 3.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -16,8 +18,9 @@ namespace openplx::mjcf {
 
 class DraftModel {
  public:
-  // Writes `document` into `dir` (so relative mesh paths resolve; empty: the temp folder) and loads it.
-  DraftModel(const Element& document, const std::string& dir);
+  // Writes `document` into `dir` (so relative mesh paths resolve; empty: the temp folder) and loads it, with
+  // exact mesh volumes or MuJoCo 2.2.2's default ones.
+  DraftModel(const Element& document, const std::string& dir, bool exact_mesh_volumes = true);
   ~DraftModel();
   DraftModel(const DraftModel&) = delete;
   DraftModel& operator=(const DraftModel&) = delete;

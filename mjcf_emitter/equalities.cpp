@@ -159,22 +159,36 @@ std::string Lowering::rigid_solimp() {
 // explicit inertials, so the file needs no exactmeshinertia, which 3.2.5 removed), for flexible loop
 // closures, bodies' inverse-inertia estimates (dA), and with velocity motors the model's own mean inertia.
 void Lowering::finish_with_draft(Element& root) {
-  std::vector<Element*> mesh_bodies;
-  for (const auto& [node, mass] : mass_on_geoms_) mesh_bodies.push_back(body_element_.at(node));
+  std::vector<Element*> mesh_bodies, legacy_bodies;  // exact mesh volumes; MuJoCo's default (legacy) ones
+  for (const auto& [node, mass] : mass_on_geoms_)
+    (legacy_mesh_mass_.count(node) ? legacy_bodies : mesh_bodies).push_back(body_element_.at(node));
   const bool references = !velocity_motors_.empty();
-  if ((soft_equalities_.empty() && mesh_bodies.empty() && !references) || sink_.has_errors()) return;
-  const DraftModel draft(root, options_.output_dir);
-  for (const std::string& text : draft.warnings()) {  // MuJoCo's own words, at the root model
-    sink_.report(fe::DiagCode::MuJoCoWarning,
-                 view_.root >= 0 ? view_.nodes[view_.root].where : fe::SourceRange{},
-                 "MuJoCo warns while compiling the draft model: " + text);
+  if (sink_.has_errors()) return;
+  auto compile = [&](bool exact) {
+    auto draft = std::make_unique<DraftModel>(root, options_.output_dir, exact);
+    for (const std::string& text : draft->warnings()) {  // MuJoCo's own words, at the root model
+      sink_.report(fe::DiagCode::MuJoCoWarning,
+                   view_.root >= 0 ? view_.nodes[view_.root].where : fe::SourceRange{},
+                   "MuJoCo warns while compiling the draft model: " + text);
+    }
+    if (!draft->model()) {
+      warn({}, "the draft model did not load in MuJoCo (" + draft->error() +
+                   "); mesh bodies keep MuJoCo's own mass computation and flexible loop closures its default "
+                   "softness");
+      return std::unique_ptr<DraftModel>();
+    }
+    return draft;
+  };
+  // The legacy bodies first, so that a draft for the rest already holds their final inertials.
+  if (!legacy_bodies.empty()) {
+    const std::unique_ptr<DraftModel> legacy = compile(false);
+    if (!legacy) return;
+    legacy->write_inertials(legacy_bodies);
   }
-  if (!draft.model()) {
-    warn({}, "the draft model did not load in MuJoCo (" + draft.error() +
-                 "); mesh bodies keep MuJoCo's own mass computation and flexible loop closures its default "
-                 "softness");
-    return;
-  }
+  if (soft_equalities_.empty() && mesh_bodies.empty() && !references) return;
+  const std::unique_ptr<DraftModel> compiled = compile(true);
+  if (!compiled) return;
+  const DraftModel& draft = *compiled;
   draft.write_inertials(mesh_bodies);
   if (references) write_mean_inertia(root, *draft.model());
   const SoftEqualityResult r = apply_soft_equalities(draft, soft_equalities_, options_.timestep,

@@ -114,6 +114,10 @@ class Lowering {
   const std::vector<const sn::Geometry*>& geometries_of(int node);
   double density_of(const sn::Geometry& g);
   void emit_inertial(Element& body, int node);
+  // <inertial> with `tensor` (about `com`, in axes turned by `axes` from the body's), written as MuJoCo 2.2.2
+  // will read it and repaired where its compiler would refuse it (bodies.cpp).
+  void write_inertial(Element& body, double mass, const Eigen::Vector3d& com, const Eigen::Quaterniond& axes,
+                      const Eigen::Matrix3d& tensor, fe::SourceRange where, const std::string& what);
   void emit_geom(Element& parent, const sn::Geometry& g, const sn::Transform& pose, bool on_static);
 
   // ----------------------------------------------------------------------------------- joints.cpp
@@ -237,6 +241,9 @@ class Lowering {
   std::map<int, Element*> body_element_;
   std::map<int, std::vector<Element*>> joint_of_mate_;
   std::map<int, double> mass_on_geoms_;
+  // Mesh bodies whose mass properties take MuJoCo 2.2.2's default (legacy) mesh volumes: URDF links without
+  // <inertial>, as MuJoCo's URDF importer computes them. The others take exact volumes.
+  std::set<int> legacy_mesh_mass_;
   struct JointInfo {
     int node;
     Eigen::Vector3d pos;   // in the child body frame

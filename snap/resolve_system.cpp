@@ -463,6 +463,11 @@ class SystemBuilder {
         body.inertia = *tensor;
         check_inertia_tensor(inertia, *tensor);
       }
+      body.tensor_where = in_.written_at(inertia, "tensor");
+    }
+    if (const fe::Value* law = ev_.value(id, "urdf_mass"); law && law->kind == fe::Value::Kind::String) {
+      if (law->string_value() == "collisions") body.urdf_mass = BodyProperties::UrdfMass::Collisions;
+      if (law->string_value() == "as_written") body.urdf_mass = BodyProperties::UrdfMass::AsWritten;
     }
     if (fe::ObjectId kinematics = object(id, "kinematics"); kinematics != fe::kNoObject) {
       if (std::optional<Transform> cm = transform_of(kinematics, std::string_view("local_cm_transform")))

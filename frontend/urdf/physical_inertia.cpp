@@ -1,32 +1,34 @@
 #include "frontend/urdf/physical_inertia.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <sstream>
+
+#include "frontend/urdf/mujoco_principal_inertia.h"
 
 namespace openplx::frontend {
 
 std::optional<InertiaRepair> repair_inertia(double mass, const Eigen::Matrix3d& tensor) {
   if (!(mass > 0)) return std::nullopt;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(tensor);
-  const Eigen::Vector3d p = eigen.eigenvalues();  // ascending
-  // Relative slack: a thin rod or a flat plate sits exactly on the triangle inequality's edge.
-  const double slack = 1e-9 * std::max(p.cwiseAbs().maxCoeff(), 1e-300);
-  const bool positive = p.minCoeff() > 0;
-  const bool triangle = p(0) + p(1) + slack >= p(2);
-  if (positive && triangle) return std::nullopt;
+  // The moments MuJoCo's importer finds for these very numbers, judged by its compiler's exact rule: no
+  // tolerance, so that what passes here loads there (a tolerance let A + B == C minus rounding through).
+  const std::array<double, 3> p = mujoco_inertia::principal_moments(tensor).moments;
+  const bool positive = !mujoco_inertia::negative(p);
+  const bool triangle = mujoco_inertia::triangle(p);
+  if (positive && triangle && p[0] > 0 && p[1] > 0 && p[2] > 0) return std::nullopt;
   std::ostringstream what;
-  what.precision(6);
-  if (p.minCoeff() == 0 && triangle) {  // an ideal rod (or point): a limit of physical bodies MuJoCo accepts
-    what << "principal moments " << p(0) << ", " << p(1) << ", " << p(2)
+  what.precision(17);
+  if (positive && triangle) {  // an ideal rod (or point): a limit of physical bodies MuJoCo accepts
+    what << "principal moments " << p[0] << ", " << p[1] << ", " << p[2]
          << " include a zero (an ideal thin rod); kept as written, as MuJoCo's own importer keeps it";
     return InertiaRepair{tensor, what.str()};
   }
-  what << "principal moments " << p(0) << ", " << p(1) << ", " << p(2)
-       << (positive ? " violate the triangle inequality (A + B >= C)" : " are not all positive");
-  double mean = p.sum() / 3;
+  what << "principal moments " << p[0] << ", " << p[1] << ", " << p[2]
+       << (positive ? " (as MuJoCo computes them) violate the triangle inequality A + B >= C, which MuJoCo "
+                      "checks exactly"
+                    : " are not all positive");
+  double mean = (p[0] + p[1] + p[2]) / 3;
   if (mean > 0) {
-    what << "; they were set to their mean " << mean;
+    what << "; they were set to their mean " << mean << " (MuJoCo's balanceinertia)";
   } else {
     const double radius = std::cbrt(3 * mass / (4 * M_PI * 1000.0));
     mean = 0.4 * mass * radius * radius;

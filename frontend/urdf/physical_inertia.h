@@ -12,8 +12,9 @@ struct InertiaRepair {
   std::string what;        // what was wrong and what was done, for the warning
 };
 
-// A tensor is physical when it is symmetric positive definite and its principal moments satisfy the
-// triangle inequality (A + B >= C). Otherwise the principal moments become their mean (MuJoCo's
+// A tensor is physical when its principal moments, as MuJoCo 2.2.2 computes them from these numbers
+// (mujoco_principal_inertia.h), are not negative and satisfy the triangle inequality (A + B >= C, exactly, as
+// MuJoCo's compiler checks it). Otherwise the principal moments become their mean (MuJoCo's
 // `balanceinertia` rule, which keeps the trace), or, when that mean is not positive, those of a solid
 // sphere of water density and the given mass. A zero principal moment that keeps the triangle inequality
 // (an ideal rod) is reported but kept, as MuJoCo keeps it. nullopt when the tensor is physical or the mass

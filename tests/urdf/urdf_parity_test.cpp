@@ -1,9 +1,10 @@
 // URDF import against MuJoCo's own URDF compiler: for every corpus URDF (and every robot of
 // tests/urdf/robots, written for what real robot files do: planar joints, joints named like links, mimic
-// offsets) that MuJoCo accepts, the same bodies with the same masses and principal inertias (massless frames
-// included), every link at the same world pose at the zero configuration and at 20 random joint
-// configurations, the same touching links, and the same motion for 0.5 s (damping, friction, limits and mimic
-// couplings included), all to 1e-9. It counts what it compares: every URDF MuJoCo accepts must be compared.
+// offsets, links without <inertial> and with mesh geometry, flat plates) that MuJoCo accepts, the same bodies
+// with the same masses (the root's and massless frames' included) and principal inertias, every link at the
+// same world pose at the zero configuration and at 20 random joint configurations, the same touching links,
+// and the same motion for 0.5 s (damping, friction, limits and mimic couplings included), all to 1e-9. It
+// counts what it compares: every URDF MuJoCo accepts must be compared.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
@@ -124,16 +125,14 @@ TEST_F(UrdfParity, BodiesMassesAndPosesMatchMuJoCosUrdfCompiler) {
                       .norm(),
                   1e-9);
         EXPECT_LT((rotation(d_ours->xquat + 4 * o) - rotation(d_theirs->xquat + 4 * b)).norm(), 1e-9);
-        // Deliberate difference: a link without <inertial> is massless in MuJoCo's compiler (which then
-        // rejects it on a moving joint, as for widowx); we give it its geometry's mass so it can move.
-        // Compared: links with mass, and massless links welded to a moving parent (tool frames), which stay
-        // massless in both. (A mass welded to the world never moves: the root's is not compared.)
-        if (config == 0 && theirs->body_mass[b] == 0 && ours->body_jntnum[o] == 0 &&
-            ours->body_weldid[o] != 0) {
-          EXPECT_EQ(ours->body_mass[o], 0.0);
+        // Every body's mass, the root's and massless ones' included: a link without <inertial> takes the
+        // mass MuJoCo's importer gives it (its collision geometry; meshes by MuJoCo's default volumes), a
+        // massless one stays massless, and visual geometry has none. The principal moments of every massive
+        // body too.
+        if (config == 0) {
+          EXPECT_NEAR(ours->body_mass[o], theirs->body_mass[b], 1e-9 * std::max(1.0, theirs->body_mass[b]));
         }
         if (config == 0 && theirs->body_mass[b] > 0) {
-          EXPECT_NEAR(ours->body_mass[o], theirs->body_mass[b], 1e-9 * std::max(1.0, theirs->body_mass[b]));
           std::array<double, 3> a{}, c{};
           for (int k = 0; k < 3; ++k) {
             a[k] = ours->body_inertia[3 * o + k];

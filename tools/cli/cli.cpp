@@ -219,6 +219,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.manifest_text = false;  // written to its file in pieces (write_manifest)
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   emit_options.exclude_initial_overlaps = options.exclude_initial_overlaps;
+  emit_options.urdf_exact_mesh_mass = options.urdf_exact_mesh_mass;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
@@ -255,7 +256,7 @@ std::string usage() {
          "T] "
          "[--prefix P]\n"
          "                    [--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--no-default-bundles]\n"
-         "                    [--exclude-initial-overlaps]\n"
+         "                    [--exclude-initial-overlaps] [--urdf-exact-mesh-mass]\n"
          "                    [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version]\n"
          "\n"
@@ -273,6 +274,8 @@ std::string usage() {
          "  --check-time T how long --check simulates, in seconds (default 1; at most 100)\n"
          "  --exclude-initial-overlaps  exclude contacts between bodies whose collision geometry overlaps\n"
          "                 at the start (<contact><exclude>), for parts meant to overlap\n"
+         "  --urdf-exact-mesh-mass  a URDF link without <inertial> takes the exact volume of its collision\n"
+         "                 meshes (default: MuJoCo's URDF importer's mass, its legacy mesh volumes)\n"
          "  --prefix P     prepend P to every MuJoCo name\n"
          "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
          "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
@@ -330,6 +333,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (arg == "--check") {
       options.check = true;
+      continue;
+    }
+    if (arg == "--urdf-exact-mesh-mass") {
+      options.urdf_exact_mesh_mass = true;
       continue;
     }
     if (arg == "--exclude-initial-overlaps") {
