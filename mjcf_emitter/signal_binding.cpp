@@ -458,11 +458,18 @@ void write_manifest_json(std::string_view model_name, std::string_view prefix,
     write(std::string_view(buffer.data(), used));
     used = 0;
   };
-  Cursor head = cursor(kFixedRoom + kNumberChars + string_room(model_name) + string_room(prefix) +
-                       string_room(model.fingerprint));
-  head.text("{\n  \"model\": ").string(model_name).text(",\n  \"prefix\": ").string(prefix);
+  Cursor head = cursor(kFixedRoom + 2 * kNumberChars + string_room(model_name) + string_room(prefix) +
+                       string_room(model.fingerprint) + string_room(model.mujoco) +
+                       strings_room(model.timestep_choices));
+  head.text("{\n  \"format_version\": ").number(kManifestFormatVersion);
+  head.text(",\n  \"model\": ").string(model_name).text(",\n  \"prefix\": ").string(prefix);
   if (!model.fingerprint.empty()) head.text(",\n  \"fingerprint\": ").string(model.fingerprint);
-  if (model.timestep > 0) head.text(",\n  \"timestep\": ").number(model.timestep);
+  if (model.timestep > 0) {
+    head.text(",\n  \"timestep\": ").number(model.timestep);
+    if (!model.mujoco.empty()) head.text(",\n  \"mujoco\": ").string(model.mujoco);
+    head.text(",\n  \"timestep_dependent\": ").boolean(!model.timestep_choices.empty());
+    head.text(",\n  \"timestep_choices\": ").strings(model.timestep_choices);
+  }
   head.text(",\n  \"signals\": [");
   done(head, kPiece);
   // The items of one JSON array, each on its own line.

@@ -210,18 +210,30 @@ std::string_view to_string(SignalValue value);
 std::string_view to_string(MjObject object);
 std::string_view to_string(Quantity quantity);
 
-// The manifest: {"model": ..., "prefix": ..., "signals": [{"path", "direction", "type", "value", "unit",
-// "enabled", "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector", "low", "high",
-// "reason", "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y", "curve2_x", "curve2_y",
-// "parameter"}]} with keys in that order, one signal or law per line, deterministic. Numbers JSON cannot hold
-// are the strings "inf", "-inf", "nan". `prefix` is the one every MuJoCo name carries.
+// The manifest (documented field by field, with every quantity, in docs/signals.schema.json): {
+// "format_version", "model", "prefix", [the ManifestModel facts], "signals": [{"path", "direction", "type",
+// "value", "unit", "enabled", "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector",
+// "low", "high", "reason", "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y",
+// "curve2_x", "curve2_y", "parameter"}]} with keys in that order, one signal or law per line, deterministic.
+// Numbers JSON cannot hold are the strings "inf", "-inf", "nan". `prefix` is the one every MuJoCo name
+// carries.
 //
+// The format's version: raised on any change a reader of the previous version would misread (a field
+// removed, renamed or given another meaning or unit, a quantity applied differently); a field or quantity
+// added that old readers may ignore keeps it. A reader refuses versions above the one it knows.
+inline constexpr int kManifestFormatVersion = 1;
+
 // What the manifest says about the model itself, written after "prefix" when given: "fingerprint" (a
-// SignalBridge refuses a model whose own fingerprint differs: model_fingerprint.h) and "timestep" (the time
-// step it was emitted for, which the runtime names when the model runs unstably at another).
+// SignalBridge refuses a model whose own fingerprint differs: model_fingerprint.h), "timestep" (the time
+// step it was emitted for), "mujoco" (the MuJoCo version its numbers are for, --mujoco), and
+// "timestep_dependent" with "timestep_choices": whether, and through which elements, the emitter's stability
+// choices follow that time step (timestep_dependence.h), so that a scene stepping at another one is
+// warned about only when it matters.
 struct ManifestModel {
-  std::string fingerprint;  // model_fingerprint(document, prefix).text(); "" leaves it out
-  double timestep = 0;      // s; 0 leaves it out
+  std::string fingerprint;                    // model_fingerprint(document, prefix).text(); "" leaves it out
+  double timestep = 0;                        // s; 0 leaves it out (and the two fields after it)
+  std::string mujoco;                         // "2.2.2" or "3"; "" leaves it out
+  std::vector<std::string> timestep_choices;  // timestep_choices(document, laws); empty: not dependent
 };
 std::string manifest_json(std::string_view model_name, std::string_view prefix,
                           const std::vector<SignalBinding>& bindings, const std::vector<RuntimeLaw>& laws,

@@ -259,14 +259,26 @@ Manifest parse_manifest(const std::string& text, const std::string& path) {
   Manifest m;
   try {
     const json j = json::parse(text);
+    // First: a newer format may have changed whatever follows.
+    m.format_version = j.value("format_version", 0);
+    if (m.format_version > mjcf::kManifestFormatVersion) {
+      throw LoadError(path + ": error: the manifest's format_version is " + std::to_string(m.format_version) +
+                      " but this runtime reads up to " + std::to_string(mjcf::kManifestFormatVersion) +
+                      " (a newer openplx2mjcf wrote it: use the runtime of that version)\n");
+    }
     m.model = j.at("model").get<std::string>();
     m.prefix = j.value("prefix", std::string());
     m.fingerprint = j.value("fingerprint", std::string());
     if (j.contains("timestep")) m.timestep = real(j.at("timestep"));
+    m.mujoco = j.value("mujoco", std::string());
+    m.timestep_dependent = j.value("timestep_dependent", true);
+    m.timestep_choices = j.value("timestep_choices", std::vector<std::string>());
     for (const json& s : j.at("signals")) m.signals.push_back(binding(s));
     if (j.contains("laws")) {
       for (const json& l : j.at("laws")) m.laws.push_back(law(l));
     }
+  } catch (const LoadError&) {
+    throw;
   } catch (const std::exception& e) {  // nlohmann's parse, type and key errors, and ours
     throw LoadError(path + ": error: not a signal manifest: " + e.what() + "\n");
   }

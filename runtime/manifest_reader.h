@@ -13,12 +13,18 @@ struct Manifest {
   std::string model;        // the root model's name
   std::string prefix;       // the prefix its MuJoCo names were emitted with
   std::string fingerprint;  // mjcf::Fingerprint text; "" in manifests written before it existed
+  int format_version = 0;   // mjcf::kManifestFormatVersion it was written in; 0: written before it existed
   double timestep = 0;      // the time step the model was emitted for; 0: not recorded
+  std::string mujoco;       // the MuJoCo its numbers are for ("2.2.2", "3"); "": not recorded
+  // Whether the emitter's stability choices follow `timestep` (true when not recorded), and which.
+  bool timestep_dependent = true;
+  std::vector<std::string> timestep_choices;
   std::vector<mjcf::SignalBinding> signals;
   std::vector<mjcf::RuntimeLaw> laws;
 };
 
-// Throws LoadError("PATH: error: ...") when the file cannot be read or is not a manifest, and when a
+// Throws LoadError("PATH: error: ...") when the file cannot be read or is not a manifest, when its
+// format_version is newer than this runtime reads (mjcf::kManifestFormatVersion), and when a
 // binding or law is inconsistent in itself (a quantity on the wrong kind of element or value, no names
 // where the runtime needs one, a non-finite number where it computes with it, a torque converter without
 // its two actuators...), naming the signal or law.

@@ -160,12 +160,16 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
   state->prefix = used_prefix;
   state->emitted_timestep = read.timestep;
   // A scene stepping at another time step (its own <option>, or one read after the included file's) runs the
-  // emitter's stability caps (velocity-motor gains, soft constraints) outside the range they were set for.
-  if (read.timestep > 0 && std::abs(model->opt.timestep - read.timestep) > 1e-9 * read.timestep) {
+  // emitter's stability caps outside the range they were set for; a model without any (the manifest says
+  // which it has; older manifests do not, and are taken to have some) means the same at any step.
+  if (read.timestep > 0 && read.timestep_dependent &&
+      std::abs(model->opt.timestep - read.timestep) > 1e-9 * read.timestep) {
+    std::string which;
+    for (const std::string& choice : read.timestep_choices) which += (which.empty() ? "" : ", ") + choice;
     state->warn(manifest + ": warning: the scene steps at " + mjcf::number(model->opt.timestep) +
-                " s but the model was emitted for " + mjcf::number(read.timestep) +
-                " s; its motor gains and soft constraints follow the time step it was emitted for: emit it "
-                "with --timestep " +
+                " s but the model was emitted for " + mjcf::number(read.timestep) + " s; " +
+                (which.empty() ? "its motor gains and soft constraints" : "its " + which) +
+                " follow the time step it was emitted for: emit it with --timestep " +
                 mjcf::number(model->opt.timestep) + "\n");
   }
   state->resolve(std::move(read.signals), read.laws);

@@ -25,6 +25,7 @@
 #include "mjcf_emitter/check.h"
 #include "mjcf_emitter/emitter.h"
 #include "mjcf_emitter/model_fingerprint.h"
+#include "mjcf_emitter/timestep_dependence.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
@@ -152,6 +153,7 @@ struct Converted {
   std::string model_name;
   std::string prefix;
   double timestep = 0;                   // the one the model was emitted for, recorded in the manifest
+  std::string mujoco;                    // the MuJoCo its numbers are for (--mujoco), recorded there too
   std::optional<mjcf::Emitted> emitted;  // its signals and laws
 };
 
@@ -162,7 +164,8 @@ bool write_manifest(const Converted& converted, const std::string& path, std::st
         // The fingerprint lets a SignalBridge refuse a model this manifest was not written for.
         const mjcf::ManifestModel model{
             mjcf::model_fingerprint(converted.emitted->document, converted.prefix).text(),
-            converted.timestep};
+            converted.timestep, converted.mujoco,
+            mjcf::timestep_choices(converted.emitted->document, converted.emitted->laws)};
         mjcf::write_manifest_json(converted.model_name, converted.prefix, converted.emitted->signals,
                                   converted.emitted->laws, model, write);
       },
@@ -233,6 +236,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   converted.model_name = emit_options.model_name;
   converted.prefix = emit_options.prefix;
   converted.timestep = emit_options.timestep;
+  converted.mujoco = options.mujoco3 ? "3" : "2.2.2";
   converted.emitted = std::move(emitted);
   leave_to_exit(std::move(view));
   leave_to_exit(std::move(evaluation));
