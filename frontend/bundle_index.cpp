@@ -76,6 +76,18 @@ class Scanner {
     while (p != end && !special(*p)) ++p;
     return static_cast<size_t>(p - text_.data());
   }
+  // At `"""`: steps over the string to its closing `"""`; false when it has none.
+  bool skip_multiline_string() {
+    for (size_t i = pos_ + 3; i + 2 < text_.size(); ++i) {
+      if (text_[i] == '\\' && text_[i + 1] == '"') {
+        ++i;
+      } else if (text_[i] == '"' && text_[i + 1] == '"' && text_[i + 2] == '"') {
+        pos_ = i + 3;
+        return true;
+      }
+    }
+    return false;
+  }
   // At a backtick: steps over a non-empty backtick name on this line.
   bool skip_backtick_name();
   // An identifier that is not a keyword, or a non-empty backtick name (without its backticks).
@@ -143,7 +155,12 @@ bool Scanner::scan_tokens() {
         skip_to_line_end();
         return true;
       case '"':
-        if (peek(1) == '"' && peek(2) == '"') return false;  // a multi-line string may hold column-1 lines
+        if (peek(1) == '"' && peek(2) == '"') {
+          // A multi-line string, lines and all (they may start at column 1: a release's `.doc` texts do),
+          // ended as the lexer ends it: at the first `"""` not after a backslash.
+          if (!skip_multiline_string()) return false;
+          break;
+        }
         for (++pos_; !at_line_end() && peek() != '"'; ++pos_) {
           if (peek() != '\\') continue;
           const char next = peek(1);

@@ -31,4 +31,36 @@ const File* find_file(const Dir& dir, std::string_view name) {
   return find(files(dir), name);
 }
 
+bool declares(std::string_view qualified) {
+  const Dir* dir = &root();
+  while (!qualified.empty()) {
+    const size_t dot = qualified.find('.');
+    const std::string_view part = qualified.substr(0, dot);
+    qualified.remove_prefix(dot == std::string_view::npos ? qualified.size() : dot + 1);
+    if (const Dir* sub = find_subdir(*dir, part)) {
+      dir = sub;
+      continue;
+    }
+    if (dir == &root()) return false;
+    for (const File& file : files(*dir)) {
+      const auto* names = kDeclaredNames + file.first_name;
+      if (std::find(names, names + file.name_count, part) != names + file.name_count) return true;
+    }
+    return false;  // what follows a declared name is a member: not looked for
+  }
+  return dir != &root();
+}
+
+std::string_view config_version(const Dir& bundle) {
+  const File* config = find_file(bundle, "config.openplx");
+  if (!config) return {};
+  // The configs are ours: one `version: "..."` line each.
+  constexpr std::string_view kKey = "version: \"";
+  const size_t at = config->text.find(kKey);
+  if (at == std::string_view::npos) return {};
+  const size_t begin = at + kKey.size();
+  const size_t end = config->text.find('"', begin);
+  return end == std::string_view::npos ? std::string_view{} : config->text.substr(begin, end - begin);
+}
+
 }  // namespace openplx::frontend::embedded

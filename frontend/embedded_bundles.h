@@ -49,4 +49,11 @@ FileDeclarations declarations(const File& file);
 const Dir* find_subdir(const Dir& dir, std::string_view name);
 const File* find_file(const Dir& dir, std::string_view name);
 
+// Whether this build's own bundles have `qualified` ("Visuals.Materials.SurfaceFeatures"): a bundle, a
+// folder of one, or a name a file of that folder declares (as far as scan_declarations finds them). Used to
+// say that a name a user's bundle release lacks belongs to a newer release.
+bool declares(std::string_view qualified);
+// The version a bundle folder's config.openplx gives (`version: "0.26.3"`), or "" when it gives none.
+std::string_view config_version(const Dir& bundle);
+
 }  // namespace openplx::frontend::embedded

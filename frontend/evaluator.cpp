@@ -7,6 +7,7 @@
 
 #include "frontend/deprecations.h"
 #include "frontend/natives/builtin_natives.h"
+#include "frontend/unknown_name_notes.h"
 #include "frontend/value_format.h"
 
 namespace openplx::frontend {
@@ -1177,7 +1178,8 @@ Evaluator::Entity Evaluator::eval_member_entity(const Expr& e, const Scope& scop
           std::string message = "Unknown name " + target.ns->qualified + "." + std::string(e.text);
           std::string near = Program::suggestion(e.text, candidates);
           if (!near.empty()) message += "; did you mean `" + near + "`?";
-          sink_.report(DiagCode::UnknownName, e.range, message);
+          add_note(sink_.report(DiagCode::UnknownName, e.range, message),
+                   missing_member_note(target.ns->bundle, target.ns->qualified, e.text));
           entity.value = Value::error();
         } else if (symbol.model) {
           entity.kind = Entity::Kind::Model;

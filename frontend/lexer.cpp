@@ -281,6 +281,19 @@ void Lexer::apply_indentation(uint32_t column, uint32_t at, bool tabbed) {
       tab_opened_.back() = false;
       return;
     }
+    if (outer < column && outer > 0) {
+      // Shallower than a nested block yet deeper than the line that opened it, as an official release writes
+      // (Sensors/Library/LIDARs/SICK/TIM150.openplx 0.20.2, column 12 in a block at 13 opened at 9). AGX
+      // takes the line into the block; so do we, and the block goes on at the line's column. A top-level
+      // declaration's own block keeps the spec's rule (§2.3, an error): its case 4 is exactly that.
+      sink_.report(DiagCode::MisalignedIndent, {file_, at, at + 1},
+                   "line is indented less than its block (column " + std::to_string(indents_.back() + 1) +
+                       ") but deeper than the line that opened it (column " + std::to_string(outer + 1) +
+                       "); taken as part of the block, which continues at column " +
+                       std::to_string(column + 1));
+      indents_.back() = column;
+      return;
+    }
     if (outer < column) {
       error(DiagCode::InconsistentDedent, at, at + 1,
             "Inconsistent indentation: column " + std::to_string(column + 1) +

@@ -13,7 +13,9 @@
 #include "frontend/edit_distance.h"
 #include "frontend/embedded_bundles.h"
 #include "frontend/import_plugins.h"
+#include "frontend/natives/host_declarations.h"
 #include "frontend/parser.h"
+#include "frontend/unknown_name_notes.h"
 #include "frontend/urdf/urdf_importer.h"
 
 namespace openplx::frontend {
@@ -458,6 +460,7 @@ Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRang
     if (it != ns->symbols.end()) return it->second;
     if (auto it = ns->children.find(name); it != ns->children.end())
       return Symbol{nullptr, nullptr, it->second};
+    if (Symbol s = host_declared(ns, name, ns->bundle)) return s;
   }
   // A model of the 0.17.8 API that moved: found at its current home, with a warning naming it.
   std::optional<std::string> current = renamed_model(ns->qualified, name);
@@ -480,12 +483,18 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
   for (Namespace* imported : doc->imported_files) {
     if (Symbol s = lookup_in(imported, name)) return s;
   }
+  // The folders enclosing the file's, innermost first: bundle releases name a model of a parent folder
+  // without a word (Sensors/Optics/Traits/RayEmitter.openplx: `RaySource` of Sensors/Optics).
+  for (Namespace* outer = doc->ns->parent; outer && outer->parent; outer = outer->parent) {
+    if (Symbol s = lookup_in(outer, name)) return s;
+  }
   if (doc->bundle) {
     if (Namespace* root = bundle_root(doc->bundle->name)) {
       if (Symbol s = lookup_in(root, name)) return s;
     }
   }
   if (Symbol s = lookup_in(builtins_, name)) return s;
+  if (Symbol s = host_declared(builtins_, name, doc->bundle)) return s;
   if (Namespace* root = bundle_root(name)) {
     if (bundle_visible(doc, root->bundle)) {
       for (const BundleDependency& dep :
@@ -514,9 +523,25 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
     }
     std::string near = suggestion(name, candidates);
     if (!near.empty()) message += "; did you mean `" + near + "`?";
-    sink_.report(DiagCode::UnknownName, where, message);
+    Diagnostic& d = sink_.report(DiagCode::UnknownName, where, message);
+    add_note(d, newer_bundle_note(name, bundles_));
+    if (!doc->bundle && doc->ns && doc->ns->qualified.empty())
+      add_note(d, sibling_bundle_note(sources_.file(doc->doc.file).path(), name));
   }
   return {};
+}
+
+Symbol Program::host_declared(Namespace* ns, std::string_view name, const BundleConfig* release) {
+  if (!host_declarations_ || !release || release->embedded) return {};
+  const natives::HostDeclaration* host =
+      natives::find_host_declaration(release->version, ns->qualified, name);
+  if (!host) return {};
+  std::string path = "<host declarations " +
+                     std::string(natives::host_generation(release->version).first_version) + ">/" +
+                     std::string(host->ns) + (host->ns.empty() ? "" : ".") + std::string(name) + ".openplx";
+  if (!loaded_files_.count(path)) load_document(sources_.add_static(path, host->text), ns, ns->bundle);
+  auto it = ns->symbols.find(name);
+  return it == ns->symbols.end() ? Symbol{} : it->second;
 }
 
 Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report) {
@@ -546,7 +571,8 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
                             "` in " + (ns->qualified.empty() ? ns->name : ns->qualified);
       std::string near = suggestion(name.parts[i].text, candidates);
       if (!near.empty()) message += "; did you mean `" + near + "`?";
-      sink_.report(DiagCode::UnknownName, name.parts[i].range, message);
+      Diagnostic& d = sink_.report(DiagCode::UnknownName, name.parts[i].range, message);
+      add_note(d, missing_member_note(ns->bundle, ns->qualified, name.parts[i].text));
     }
   }
   return s;

@@ -148,6 +148,9 @@ class Program {
   // Registers one bundle (no-op when one of that name exists); returns the registered one.
   const BundleConfig* add_bundle(BundleConfig bundle);
   const std::deque<BundleConfig>& bundles() const { return bundles_; }
+  // Whether names a user's bundle release leaves to its host are declared (natives/host_declarations.h); on
+  // by default. Off, they are unknown names: how a test lists what a release expects from its host.
+  void set_host_declarations(bool on) { host_declarations_ = on; }
 
   // Loads the user's file (and its imports). Returns nullptr when it cannot be read.
   DocumentInfo* load_main(const std::string& path);
@@ -211,11 +214,15 @@ class Program {
   void flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix);
   void resolve_bases_first(ModelInfo* model);
   bool bundle_visible(DocumentInfo* from, const BundleConfig* target) const;
+  // `name` in `ns` when `release`, a user's bundle, leaves it to its host (natives/host_declarations.h):
+  // declared in `ns` on its first lookup.
+  Symbol host_declared(Namespace* ns, std::string_view name, const BundleConfig* release);
   Namespace* bundle_root(std::string_view name);
 
   SourceManager& sources_;
   DiagnosticSink& sink_;
-  Namespace* builtins_ = nullptr;     // models every file sees without a bundle (BundleConfig)
+  Namespace* builtins_ = nullptr;  // models every file sees without a bundle (BundleConfig)
+  bool host_declarations_ = true;
   std::deque<BundleConfig> bundles_;  // stable addresses: namespaces and documents point at them
   std::map<std::string, Namespace*, std::less<>> bundle_roots_;
   std::deque<Namespace> namespaces_;

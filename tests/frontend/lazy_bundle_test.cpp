@@ -57,9 +57,19 @@ TEST(BundleIndex, ImportsAndOperatorsAreParsedWithTheNamespace) {
   }
 }
 
+// Lines of a multi-line string are text, even at column 1 (the 0.20.2 release's `.doc` texts), and `\"`
+// does not end it, as the lexer reads it.
+TEST(BundleIndex, StepsOverMultilineStrings) {
+  const fe::FileDeclarations d = scan(
+      "A:\n    .doc: \"\"\"\nB: not a declaration\n  \\\"\"\" still text\n\"\"\"\n        v is Int: 1\nC is A\n");
+  EXPECT_TRUE(d.complete);
+  EXPECT_TRUE(d.lazy);
+  EXPECT_EQ(d.names, (Names{"A", "C"}));
+}
+
 TEST(BundleIndex, IsUnsureOfAnythingElse) {
   const char* unsure[] = {
-      "A:\n    doc is String: \"\"\"\nB:\n\"\"\"\n",      // a multi-line string
+      "A:\n    doc is String: \"\"\"\nB:\n",                  // an unterminated multi-line string
       "A:\n\tv is Int: 1\n",                              // tab indentation
       "A:\n    v is Real[]: [1,\nB:\n    w is Int: 2\n",  // an unclosed bracket
       "A:\n    v is Int: 1)\n",                           // an unmatched bracket
@@ -84,7 +94,8 @@ TEST(BundleIndex, AgreesWithTheParserOnEveryFile) {
   size_t lazy_files = 0;
   for (const std::string& root :
        {std::string(OPENPLX_SAMPLES_DIR) + "/../bundles", std::string(OPENPLX_TEST_DATA_DIR),
-        std::string(OPENPLX_SAMPLES_DIR), std::string(OPENPLX_SHARED_CORPUS_DIR)}) {
+        std::string(OPENPLX_SAMPLES_DIR), std::string(OPENPLX_SHARED_CORPUS_DIR),
+        std::string(OPENPLX_SHARED_CORPUS_DIR) + "/../bundles-0.20.2"}) {
     if (!fs::is_directory(root)) continue;
     const bool bundles = root.ends_with("/bundles");
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
