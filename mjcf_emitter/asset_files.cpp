@@ -204,6 +204,16 @@ std::string vertices_problem(const std::vector<Eigen::Vector3d>& vertices) {
   return solid_problem(Mesh{vertices, {}});
 }
 
+std::string converted_mesh_problem(const TriangleMesh& converted) {
+  Mesh mesh;
+  for (size_t k = 0; k + 2 < converted.vertices.size(); k += 3)
+    mesh.vertices.emplace_back(converted.vertices[k], converted.vertices[k + 1], converted.vertices[k + 2]);
+  for (size_t k = 0; k + 2 < converted.faces.size(); k += 3)
+    mesh.faces.push_back({static_cast<int>(converted.faces[k]), static_cast<int>(converted.faces[k + 1]),
+                          static_cast<int>(converted.faces[k + 2])});
+  return solid_problem(mesh);
+}
+
 std::string mesh_file_problem(const std::string& path) {
   std::string bytes;
   if (!read_all(path, bytes)) return "it cannot be read";

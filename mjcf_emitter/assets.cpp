@@ -1,9 +1,11 @@
 // Lowering pass, assets: <material>s from visual materials and <mesh>es from files or vertices.
 #include "mjcf_emitter/asset_files.h"
 #include "mjcf_emitter/lowering.h"
+#include "mjcf_emitter/mesh_conversion.h"
 
 #include <cctype>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 namespace openplx::mjcf {
@@ -153,40 +155,38 @@ std::string Lowering::vertex_mesh_asset(const sn::Geometry& g) {
   return mesh_name;
 }
 
+// A mesh MuJoCo cannot be given changes the physics where it collides or has mass: an error there. A visual
+// one only changes the look: a warning, and the visual is left out (a robot is never lost to its looks).
+void Lowering::mesh_left_out(const sn::Geometry& g, fe::DiagCode code, const std::string& message) {
+  if (g.visual) {
+    warn(g.where, message + "; this visual geometry was left out");
+  } else {
+    sink_.report(code, g.where, message);
+  }
+}
+
 std::string Lowering::mesh_asset(const sn::Geometry& g) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(g.file, ec)) {
-    sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
-                 "mesh file " + g.file + " of `" + g.path + "` not found");
+    mesh_left_out(g, fe::DiagCode::MjcfMissingAsset,
+                  "mesh file " + g.file + " of `" + g.path + "` not found");
     return {};
   }
-  std::string ext = fs::path(g.file).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext != ".obj" && ext != ".stl" && ext != ".msh") {
-    sink_.report(fe::DiagCode::MjcfMissingAsset, g.where,
-                 "mesh file " + g.file + " of `" + g.path + "` is " + ext +
-                     "; MuJoCo 2.2.2 reads OBJ, binary STL and MSH");
-    return {};
-  }
-  // A file MuJoCo cannot make a mesh of fails the user's load (or crashes it): an error for a mesh that
-  // collides or has mass; a visual one is left out, warned.
-  const bool scale_valid = g.scale.allFinite() && (g.scale.array() != 0).all();
-  std::string problem = scale_valid ? mesh_file_problem(g.file) : "";
-  if (!scale_valid) {  // not through number(): a non-finite number written is the emitter's backstop
+  if (!g.scale.allFinite() || (g.scale.array() == 0).any()) {
+    // Not through number(): a non-finite number written is the emitter's backstop.
     std::ostringstream scale;
     scale << g.scale.x() << " " << g.scale.y() << " " << g.scale.z();
-    problem = "its scale " + scale.str() + " is not finite and non-zero";
+    mesh_left_out(g, fe::DiagCode::MjcfBadAsset,
+                  "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: its scale " +
+                      scale.str() + " is not finite and non-zero");
+    return {};
   }
-  if (!problem.empty()) {
-    const std::string message =
-        "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + problem;
-    if (g.visual) {
-      warn(g.where, message + "; this visual geometry was left out");
-    } else {
-      sink_.report(fe::DiagCode::MjcfBadAsset, g.where, message);
-    }
+  if (converted_with_assimp(g.file)) return converted_mesh_asset(g);
+  // A file MuJoCo cannot make a mesh of fails the user's load (or crashes it).
+  if (const std::string problem = mesh_file_problem(g.file); !problem.empty()) {
+    mesh_left_out(g, fe::DiagCode::MjcfBadAsset,
+                  "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + problem);
     return {};
   }
   std::string file = g.file;
@@ -194,6 +194,36 @@ std::string Lowering::mesh_asset(const sn::Geometry& g) {
     file = fs::path(g.file).lexically_relative(options_.output_dir).generic_string();
   const std::string mesh_name = name(g.path);
   assets_->add("mesh").set("name", mesh_name).set("file", file).set("scale", g.scale);
+  return mesh_name;
+}
+
+// A mesh file MuJoCo 2.2.2 cannot read, read with assimp once per file and held inline; the geometries of one
+// file and scale share one asset. Writing to a file, the converter moves it into a file (mesh_files.h).
+std::string Lowering::converted_mesh_asset(const sn::Geometry& g) {
+  auto [read, first] = read_meshes_.try_emplace(g.file);
+  if (first) {
+    auto mesh = std::make_shared<TriangleMesh>();
+    read->second.problem = read_mesh_with_assimp(g.file, *mesh);
+    if (read->second.problem.empty()) read->second.problem = converted_mesh_problem(*mesh);
+    if (read->second.problem.empty()) read->second.mesh = std::move(mesh);
+  }
+  if (!read->second.mesh) {
+    mesh_left_out(
+        g, fe::DiagCode::MjcfBadAsset,
+        "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + read->second.problem);
+    return {};
+  }
+  const std::string key =
+      g.file + '\n' + number(g.scale.x()) + ' ' + number(g.scale.y()) + ' ' + number(g.scale.z());
+  if (auto shared = converted_assets_.find(key); shared != converted_assets_.end()) return shared->second;
+  const std::string mesh_name = name(g.path);
+  assets_->add("mesh")
+      .set("name", mesh_name)
+      .set("vertex", vertex_text(*read->second.mesh))
+      .set("face", face_text(*read->second.mesh))
+      .set("scale", g.scale);
+  converted_assets_.emplace(key, mesh_name);
+  converted_meshes_.push_back({mesh_name, g.file, read->second.mesh});
   return mesh_name;
 }
 

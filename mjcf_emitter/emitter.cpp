@@ -93,6 +93,7 @@ Emitted Lowering::run() {
   stiffen_equalities(root);
   finish_with_draft(root);
   exclude_initial_overlaps(root);
+  out.converted_meshes = std::move(converted_meshes_);
   return out;
 }
 

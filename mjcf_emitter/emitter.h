@@ -9,9 +9,11 @@
 // OpenPLX attribute and what was done instead.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "frontend/diagnostics.h"
+#include "mjcf_emitter/mesh_conversion.h"
 #include "mjcf_emitter/signal_binding.h"
 #include "mjcf_emitter/xml.h"
 #include "snap/snap.h"
@@ -42,8 +44,17 @@ struct EmitOptions {
   bool urdf_exact_mesh_mass = false;
 };
 
+// A <mesh> asset read from a file MuJoCo cannot read (mesh_conversion.h): `document` holds it inline.
+struct ConvertedMesh {
+  std::string asset;                         // the <mesh> element's name
+  std::string source;                        // the file it was read from
+  std::shared_ptr<const TriangleMesh> mesh;  // shared by the assets of one file (one per scale)
+};
+
 struct Emitted {
   Element document{"mujoco"};
+  // Written to a file, the converter moves these into files beside it (mesh_files.h).
+  std::vector<ConvertedMesh> converted_meshes;
   std::vector<SignalBinding> signals;  // every OpenPLX input/output and how MuJoCo reaches it
   std::vector<RuntimeLaw> laws;        // what the runtime computes each step (engines, torque converters)
   std::string manifest_json;           // the same, as the signal manifest file (EmitOptions::manifest_text)

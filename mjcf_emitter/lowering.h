@@ -148,6 +148,8 @@ class Lowering {
   void emit_texture(Element& material, const sn::VisualMaterial& m, const sn::FileTexture& t);
   std::string vertex_mesh_asset(const sn::Geometry& g);
   std::string mesh_asset(const sn::Geometry& g);
+  std::string converted_mesh_asset(const sn::Geometry& g);
+  void mesh_left_out(const sn::Geometry& g, fe::DiagCode code, const std::string& message);
 
   // --------------------------------------------------------------------------------- keyframe.cpp
   void emit_initial_state(Element& root);
@@ -276,6 +278,14 @@ class Lowering {
   std::map<int, std::pair<int, double>> actuator_ctrl_;  // motor interaction -> actuator index, initial ctrl
   size_t actuator_count_ = 0;
   Element* assets_ = nullptr;
+  // Mesh files read with assimp (assets.cpp), by path: the mesh, or why there is none.
+  struct ReadMesh {
+    std::shared_ptr<const TriangleMesh> mesh;
+    std::string problem;
+  };
+  std::map<std::string, ReadMesh> read_meshes_;
+  std::map<std::string, std::string> converted_assets_;  // file and scale -> its <mesh> asset
+  std::vector<ConvertedMesh> converted_meshes_;          // handed to Emitted
   Element* size_ = nullptr;  // <size>, when the model has tracks (tracks.cpp fills it in or drops it)
   struct DriveEdge {
     int from;        // shaft

@@ -1,0 +1,209 @@
+#include "mjcf_emitter/mesh_conversion.h"
+
+#include <dlfcn.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+#include "frontend/bundles.h"
+#include "mjcf_emitter/mesh_module_abi.h"
+
+namespace openplx::mjcf {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::mutex candidates_mutex;
+std::vector<std::string>& extra_candidates() {
+  static std::vector<std::string> paths;
+  return paths;
+}
+
+// Beside an installed executable, then this build's, then the configured install prefix's, then registered.
+std::vector<std::string> module_candidates() {
+  std::vector<std::string> paths;
+  if (const fs::path dir = frontend::executable_dir(); !dir.empty())
+    paths.push_back((dir / "../lib/openplx2mjcf/libopenplx_meshes.so").lexically_normal());
+#ifdef OPENPLX_MESH_MODULE_BUILT
+  paths.emplace_back(OPENPLX_MESH_MODULE_BUILT);
+#endif
+#ifdef OPENPLX_MESH_MODULE_INSTALLED
+  paths.emplace_back(OPENPLX_MESH_MODULE_INSTALLED);
+#endif
+  std::lock_guard lock(candidates_mutex);
+  paths.insert(paths.end(), extra_candidates().begin(), extra_candidates().end());
+  return paths;
+}
+
+struct LoadedModule {
+  OpenplxReadMeshFunction read = nullptr;
+  std::string error;
+};
+
+// Loaded on the first mesh that needs it, once per process.
+const LoadedModule& loaded_module() {
+  static const LoadedModule module = [] {
+    LoadedModule m;
+    std::string tried;
+    for (const std::string& path : module_candidates()) {
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec)) {
+        tried += (tried.empty() ? "" : ", ") + path;
+        continue;
+      }
+      // Never closed: its code may still be on a stack when the process ends.
+      void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
+      if (!handle) {
+        const char* why = dlerror();
+        m.error = "cannot load the mesh reader " + path + ": " + (why ? why : "unknown error");
+        return m;
+      }
+      m.read = reinterpret_cast<OpenplxReadMeshFunction>(dlsym(handle, OPENPLX_READ_MESH_SYMBOL));
+      if (!m.read) m.error = "the mesh reader " + path + " has no " OPENPLX_READ_MESH_SYMBOL;
+      return m;
+    }
+    m.error = "cannot find the mesh reader libopenplx_meshes.so (tried " + tried + ")";
+    return m;
+  }();
+  return module;
+}
+
+struct ReadResult {
+  TriangleMesh* mesh;
+  std::string problem;
+};
+
+void append_float(std::string& out, float value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof(text), value).ptr;  // shortest that reads back
+  out.append(text, end);
+}
+
+template <typename T>
+void put(std::string& bytes, T value) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));  // little-endian, as STL is, on the platforms we build for
+  bytes.append(raw, sizeof(T));
+}
+
+std::string stl_bytes(const TriangleMesh& mesh) {
+  std::string bytes(80, '\0');  // an empty header: no date or name, the same bytes every run
+  put(bytes, static_cast<uint32_t>(mesh.triangle_count()));
+  for (size_t f = 0; f < mesh.faces.size(); f += 3) {
+    std::array<Eigen::Vector3f, 3> corner;
+    for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3f(&mesh.vertices[3 * mesh.faces[f + k]]);
+    const Eigen::Vector3f normal = (corner[1] - corner[0]).cross(corner[2] - corner[0]).normalized();
+    for (int c = 0; c < 3; ++c) put(bytes, std::isfinite(normal[c]) ? normal[c] : 0.0f);
+    for (const Eigen::Vector3f& p : corner)
+      for (int c = 0; c < 3; ++c) put(bytes, p[c]);
+    put(bytes, uint16_t{0});
+  }
+  return bytes;
+}
+
+std::string obj_bytes(const TriangleMesh& mesh) {
+  std::string text;
+  for (size_t v = 0; v < mesh.vertices.size(); v += 3) {
+    text += 'v';
+    for (int c = 0; c < 3; ++c) (text += ' '), append_float(text, mesh.vertices[v + c]);
+    text += '\n';
+  }
+  for (size_t f = 0; f < mesh.faces.size(); f += 3) {
+    text += 'f';
+    for (int k = 0; k < 3; ++k) (text += ' ') += std::to_string(mesh.faces[f + k] + 1);
+    text += '\n';
+  }
+  return text;
+}
+
+}  // namespace
+
+bool converted_with_assimp(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".obj" || ext == ".msh") return false;
+  if (ext != ".stl") return true;
+  std::ifstream in(path, std::ios::binary);
+  char head[84] = {};
+  in.read(head, sizeof(head));
+  const std::streamsize got = in.gcount();
+  std::error_code ec;
+  const uintmax_t size = fs::file_size(path, ec);
+  if (ec) return false;
+  if (got == 84) {
+    uint32_t triangles;
+    std::memcpy(&triangles, head + 80, 4);
+    if (size == 84 + 50 * static_cast<uintmax_t>(triangles)) return triangles > kMaxStlTriangles;
+  }
+  size_t at = 0;
+  while (at < static_cast<size_t>(got) && std::isspace(static_cast<unsigned char>(head[at]))) ++at;
+  return static_cast<size_t>(got) >= at + 5 && std::strncmp(head + at, "solid", 5) == 0;
+}
+
+void add_mesh_module_candidate(const std::string& path) {
+  std::lock_guard lock(candidates_mutex);
+  extra_candidates().push_back(path);
+}
+
+std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh) {
+  const LoadedModule& module = loaded_module();
+  if (!module.read) return module.error;
+  ReadResult result{&mesh, {}};
+  const OpenplxMeshSink sink{
+      &result,
+      [](void* context, const float* vertices, size_t vertex_floats, const uint32_t* faces, size_t indices) {
+        TriangleMesh& out = *static_cast<ReadResult*>(context)->mesh;
+        out.vertices.assign(vertices, vertices + vertex_floats);
+        out.faces.assign(faces, faces + indices);
+      },
+      [](void* context, const char* message, size_t size) {
+        static_cast<ReadResult*>(context)->problem.assign(message, size);
+      },
+  };
+  mesh = TriangleMesh{};
+  module.read(path.c_str(), &sink);
+  return result.problem;
+}
+
+std::string vertex_text(const TriangleMesh& mesh) {
+  std::string text;
+  text.reserve(mesh.vertices.size() * 10);
+  for (size_t k = 0; k < mesh.vertices.size(); ++k) {
+    if (k) text += ' ';
+    append_float(text, mesh.vertices[k]);
+  }
+  return text;
+}
+
+std::string face_text(const TriangleMesh& mesh) {
+  std::string text;
+  text.reserve(mesh.faces.size() * 6);
+  for (size_t k = 0; k < mesh.faces.size(); ++k) {
+    if (k) text += ' ';
+    text += std::to_string(mesh.faces[k]);
+  }
+  return text;
+}
+
+const char* mesh_file_extension(const TriangleMesh& mesh) {
+  return mesh.triangle_count() <= kMaxStlTriangles ? ".stl" : ".obj";
+}
+
+std::string mesh_file_bytes(const TriangleMesh& mesh) {
+  return mesh.triangle_count() <= kMaxStlTriangles ? stl_bytes(mesh) : obj_bytes(mesh);
+}
+
+}  // namespace openplx::mjcf

@@ -1,0 +1,56 @@
+// Mesh files MuJoCo 2.2.2 cannot read (COLLADA .dae, .ply, .gltf/.glb, .3ds, .fbx, .off, ASCII STL, ...) read
+// with the Open Asset Import Library (assimp) into one triangle mesh, which the emitter gives MuJoCo inline
+// (<mesh vertex face>) or as a file it reads (mesh_files.h). Files MuJoCo reads itself (OBJ, MSH, binary STL
+// of up to 200000 triangles) are left to it: its own reader then computes the same mesh volumes as its URDF
+// importer does, which mass parity depends on.
+//
+// How a file is read follows how ROS tools show it (RViz 2's assimp loader, Gazebo classic's COLLADA loader):
+// every node transform is baked into the vertices (all the file's meshes merged into one), points and lines
+// are dropped, polygons triangulated; COLLADA's <unit meter> scales the file to metres; COLLADA's <up_axis>
+// is ignored (the coordinates are taken as written, Z up as in a URDF: assimp would turn a Z_UP file onto Y);
+// glTF's Y up is turned onto Z, as RViz does.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace openplx::mjcf {
+
+// A mesh as MuJoCo holds one: x y z of each vertex as 32-bit floats (the precision of MuJoCo's mesh readers,
+// so the inline form, a written STL and a written OBJ give MuJoCo the same vertices) and three 0-based vertex
+// indices per triangle.
+struct TriangleMesh {
+  std::vector<float> vertices;
+  std::vector<uint32_t> faces;
+  size_t triangle_count() const { return faces.size() / 3; }
+};
+
+// MuJoCo 2.2.2 reads at most this many triangles from an STL file.
+inline constexpr size_t kMaxStlTriangles = 200000;
+
+// Whether the file goes through assimp: any extension but .obj, .msh and .stl (compared case-insensitively),
+// and an .stl that is ASCII (begins with `solid` and its size is no binary STL's) or binary with more than
+// kMaxStlTriangles triangles. Other .obj, .msh and .stl files go to MuJoCo unchanged, checked first by
+// asset_files.h (a damaged binary STL is diagnosed there as such).
+bool converted_with_assimp(const std::string& path);
+
+// Reads the file at `path` with assimp into `mesh`; empty on success, else why it cannot be read (assimp's
+// message, "it holds no triangles", or why the reader module is missing). The mesh is not yet checked for
+// being a solid (asset_files.h). assimp lives in a module loaded on the first call (mesh_module_abi.h),
+// found beside the executable (../lib/openplx2mjcf/), in the build, in the install prefix, or at a path
+// registered here first (a package that installs it elsewhere).
+std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh);
+void add_mesh_module_candidate(const std::string& path);
+
+// The inline MJCF attributes <mesh vertex="..." face="...">: shortest text that reads back to the same
+// floats.
+std::string vertex_text(const TriangleMesh& mesh);
+std::string face_text(const TriangleMesh& mesh);
+
+// The mesh as a file MuJoCo 2.2.2 reads: binary STL when it has at most kMaxStlTriangles triangles, else OBJ.
+// The bytes depend on the mesh only (no date, no name), so the same input writes the same file.
+const char* mesh_file_extension(const TriangleMesh& mesh);  // ".stl" or ".obj"
+std::string mesh_file_bytes(const TriangleMesh& mesh);
+
+}  // namespace openplx::mjcf
