@@ -24,6 +24,7 @@
 #include "frontend/value_format.h"
 #include "mjcf_emitter/check.h"
 #include "mjcf_emitter/emitter.h"
+#include "mjcf_emitter/mesh_files.h"
 #include "mjcf_emitter/model_fingerprint.h"
 #include "mjcf_emitter/timestep_dependence.h"
 #include "snap/resolve_system.h"
@@ -154,8 +155,42 @@ struct Converted {
   std::string prefix;
   double timestep = 0;                   // the one the model was emitted for, recorded in the manifest
   std::string mujoco;                    // the MuJoCo its numbers are for (--mujoco), recorded there too
-  std::optional<mjcf::Emitted> emitted;  // its signals and laws
+  std::optional<mjcf::Emitted> emitted;    // its signals and laws
+  std::vector<mjcf::MeshFile> mesh_files;  // converted meshes, written beside it (mjcf_emitter/mesh_files.h)
 };
+
+// Writes the converted meshes into their folder beside the output, each whole or not at all. `written` gets
+// the files written (and the folder, when it was made here) so that a later failure can take them back.
+bool write_mesh_files(const std::string& output, const std::vector<mjcf::MeshFile>& files,
+                      std::vector<std::filesystem::path>& written, std::string& error) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::absolute(output).parent_path();
+  for (const mjcf::MeshFile& file : files) {
+    const fs::path path = dir / file.path, folder = path.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) {
+      if (!fs::create_directory(folder, ec)) {
+        error = "cannot create the mesh folder " + folder.string() + ": " + ec.message();
+        return false;
+      }
+      written.push_back(folder);
+    }
+    if (!write_file_atomically(path.string(), file.bytes, error)) {
+      error = path.string() + ": " + error;
+      return false;
+    }
+    written.push_back(path);
+  }
+  return true;
+}
+
+// Takes back what write_mesh_files wrote, files before their folder.
+void remove_written(const std::vector<std::filesystem::path>& written) {
+  for (auto it = written.rbegin(); it != written.rend(); ++it) {
+    std::error_code ec;
+    std::filesystem::remove(*it, ec);  // a folder only if empty
+  }
+}
 
 bool write_manifest(const Converted& converted, const std::string& path, std::string& error) {
   return write_file_atomically(
@@ -228,10 +263,16 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
   timer.lap("emit");
   if (sink.has_errors()) return true;
-  const std::string xml = emitted.document.to_string();
+  std::string xml = emitted.document.to_string();
   timer.lap("print xml");
+  // --check reads converted meshes inline, as the emitter's drafts did: no mesh file exists before the
+  // output.
   if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
   if (!options.output) return true;  // without -o the model is only checked
+  if (to_file && !emitted.converted_meshes.empty()) {
+    converted.mesh_files = mjcf::move_meshes_to_files(emitted, mjcf::mesh_folder_for(*options.output));
+    xml = emitted.document.to_string();
+  }
   converted.xml = std::move(xml);
   converted.model_name = emit_options.model_name;
   converted.prefix = emit_options.prefix;
@@ -493,8 +534,12 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   } else if (!failed) {
     const std::string dump = text.str();
     std::string write_error;
-    if (!write_file_atomically(*options->output, converted.xml.empty() ? dump : converted.xml, write_error) ||
+    // Meshes first, so that the MJCF never names a file not yet there; taken back if anything fails.
+    std::vector<std::filesystem::path> mesh_files_written;
+    if (!write_mesh_files(*options->output, converted.mesh_files, mesh_files_written, write_error) ||
+        !write_file_atomically(*options->output, converted.xml.empty() ? dump : converted.xml, write_error) ||
         (converted.emitted && !write_manifest(converted, manifest_path(*options->output), write_error))) {
+      remove_written(mesh_files_written);
       err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
           << "]\n";
       return kExitInputError;
