@@ -43,15 +43,25 @@ std::string without_packages(std::string xml, const fs::path& urdf_dir) {
 }  // namespace
 
 fs::path find_package(const std::string& package, const fs::path& urdf_dir) {
-  for (fs::path d = urdf_dir; d.has_relative_path(); d = d.parent_path()) {
-    if (d.filename() == package) return d;
-  }
+  // ROS's order, which our importer follows too (README "URDF"): ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, then
+  // a folder named P at or above the URDF's.
   if (const char* path = std::getenv("ROS_PACKAGE_PATH")) {
     std::stringstream entries(path);
     for (std::string entry; std::getline(entries, entry, ':');) {
       if (entry.empty()) continue;
       if (fs::path found = holding(fs::path(entry), package, 3); !found.empty()) return found;
     }
+  }
+  if (const char* path = std::getenv("AMENT_PREFIX_PATH")) {
+    std::stringstream entries(path);
+    for (std::string entry; std::getline(entries, entry, ':');) {
+      std::error_code ec;
+      if (!entry.empty() && fs::is_directory(fs::path(entry) / "share" / package, ec))
+        return fs::path(entry) / "share" / package;
+    }
+  }
+  for (fs::path d = urdf_dir; d.has_relative_path(); d = d.parent_path()) {
+    if (d.filename() == package) return d;
   }
   return {};
 }

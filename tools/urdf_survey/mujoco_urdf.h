@@ -9,8 +9,9 @@
 
 namespace openplx::urdf_survey {
 
-// The folder a `package://P/...` name stands for, as a ROS user would have it: a folder P at or above the
-// URDF's, else an entry of ROS_PACKAGE_PATH that is P or holds P up to three folders down. Empty if none.
+// The folder a `package://P/...` name stands for, as ROS (and our importer) finds it: an entry of
+// ROS_PACKAGE_PATH that is P or holds P up to three folders down, else AMENT_PREFIX_PATH's share/P, else a
+// folder P at or above the URDF's. Empty if none.
 std::filesystem::path find_package(const std::string& package, const std::filesystem::path& urdf_dir);
 
 // Loads `urdf` with MuJoCo's compiler through a copy written into `work_dir`. On failure returns null and
