@@ -3,6 +3,7 @@
 #include "mjcf_emitter/emitter.h"
 
 #include "mjcf_emitter/lowering.h"
+#include "mjcf_emitter/viewer_defaults.h"
 
 namespace openplx::mjcf {
 
@@ -93,6 +94,9 @@ Emitted Lowering::run() {
   stiffen_equalities(root);
   finish_with_draft(root);
   exclude_initial_overlaps(root);
+  // A light, framing and colours for viewers (viewer_defaults.h); after the draft, whose <statistic> it
+  // completes.
+  add_viewer_defaults(root, options_.prefix);
   out.converted_meshes = std::move(converted_meshes_);
   return out;
 }

@@ -31,6 +31,7 @@
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
 #include "tools/cli/atomic_file.h"
+#include "tools/cli/depfile.h"
 #include "tools/cli/huge_page_heap.h"
 
 #ifndef OPENPLX_VERSION
@@ -153,10 +154,11 @@ struct Converted {
   std::string xml;
   std::string model_name;
   std::string prefix;
-  double timestep = 0;                   // the one the model was emitted for, recorded in the manifest
-  std::string mujoco;                    // the MuJoCo its numbers are for (--mujoco), recorded there too
+  double timestep = 0;                     // the one the model was emitted for, recorded in the manifest
+  std::string mujoco;                      // the MuJoCo its numbers are for (--mujoco), recorded there too
   std::optional<mjcf::Emitted> emitted;    // its signals and laws
   std::vector<mjcf::MeshFile> mesh_files;  // converted meshes, written beside it (mjcf_emitter/mesh_files.h)
+  std::vector<std::string> asset_inputs;   // the mesh and texture files it reads (--depfile)
 };
 
 // Writes the converted meshes into their folder beside the output, each whole or not at all. `written` gets
@@ -198,9 +200,8 @@ bool write_manifest(const Converted& converted, const std::string& path, std::st
       [&](const PieceWriter& write) {
         // The fingerprint lets a SignalBridge refuse a model this manifest was not written for.
         const mjcf::ManifestModel model{
-            mjcf::model_fingerprint(converted.emitted->document, converted.prefix).text(),
-            converted.timestep, converted.mujoco,
-            mjcf::timestep_choices(converted.emitted->document, converted.emitted->laws)};
+            mjcf::model_fingerprint(converted.emitted->document, converted.prefix).text(), converted.timestep,
+            converted.mujoco, mjcf::timestep_choices(converted.emitted->document, converted.emitted->laws)};
         mjcf::write_manifest_json(converted.model_name, converted.prefix, converted.emitted->signals,
                                   converted.emitted->laws, model, write);
       },
@@ -269,6 +270,15 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   // output.
   if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
   if (!options.output) return true;  // without -o the model is only checked
+  if (options.pose) {
+    mjcf::place_model(emitted.document, *options.pose);
+    xml = emitted.document.to_string();
+  }
+  if (options.depfile) {
+    converted.asset_inputs = asset_files(emitted.document, emit_options.output_dir);
+    for (const mjcf::ConvertedMesh& mesh : emitted.converted_meshes)
+      converted.asset_inputs.push_back(fs::absolute(mesh.source).lexically_normal().string());
+  }
   if (to_file && !emitted.converted_meshes.empty()) {
     converted.mesh_files = mjcf::move_meshes_to_files(emitted, mjcf::mesh_folder_for(*options.output));
     xml = emitted.document.to_string();
@@ -297,42 +307,57 @@ std::string manifest_path(const std::string& output) {
 }
 
 std::string usage() {
-  return "usage: openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check] [--check-time "
-         "T] "
-         "[--prefix P]\n"
-         "                    [--timestep S] [--mujoco 2.2|3] [--no-keyframe] [--no-default-bundles]\n"
-         "                    [--exclude-initial-overlaps] [--urdf-exact-mesh-mass]\n"
-         "                    [--dump=tokens|ast|values|snap]\n"
-         "                    [--help] [--version]\n"
+  return "usage: openplx2mjcf FILE [-o OUT|-] [--model NAME] [-B DIR]... [--prefix P] [--pose POSE]\n"
+         "                    [--no-keyframe] [--timestep S] [--mujoco 2.2|3] [--no-default-bundles]\n"
+         "                    [--strict] [--check] [--check-time T] [--exclude-initial-overlaps]\n"
+         "                    [--urdf-exact-mesh-mass] [--depfile DEP] [--dump=tokens|ast|values|snap]\n"
+         "                    [--help] [--version] [--] \n"
          "\n"
-         "Reads an OpenPLX model, evaluates and assembles it, and writes MuJoCo MJCF to OUT (with the "
-         "signal\n"
-         "manifest OUT.signals.json beside it). With --dump, prints an intermediate form instead.\n"
+         "Reads an OpenPLX model (or a URDF), evaluates and assembles it, and with -o writes MuJoCo MJCF\n"
+         "to OUT with the signal manifest OUT.signals.json beside it. Without -o nothing is written: the\n"
+         "model is only converted and its diagnostics printed (a check). With --dump, prints an\n"
+         "intermediate form instead.\n"
          "\n"
+         "  -o, --output OUT  write the MJCF to OUT and the manifest to OUT.signals.json ('.xml' replaced);\n"
+         "                 '-' writes the MJCF to stdout and no manifest. Default: nothing is written\n"
          "  --model NAME   the root model (default: the last model in FILE)\n"
-         "  -o OUT         write the output to OUT ('-' for stdout, the default)\n"
-         "  -B DIR         an extra bundle directory (repeatable)\n"
+         "  -B, --bundle-path DIR  an extra bundle directory (repeatable)\n"
+         "  --no-default-bundles  only the bundles of -B and OPENPLX_BUNDLE_PATH (e.g. an AGX "
+         "installation's)\n"
+         "  --prefix P     prepend P to every MuJoCo name, so that copies can share a scene\n"
+         "  --pose POSE    place the model in a bigger scene: 'x y z' or 'x y z qw qx qy qz' moves its\n"
+         "                 top-level bodies (free, jointed and static), the world's geoms and sites, "
+         "anchors\n"
+         "                 in world coordinates and free bodies' keyframe velocities (default: as modelled)\n"
+         "  --no-keyframe  no \"initial\" keyframe, for a file <include>d into a bigger scene: MuJoCo\n"
+         "                 checks a keyframe against the whole scene, and an included file's keyframe has\n"
+         "                 its own model's sizes (MuJoCo rejects the scene: 'invalid ctrl size'); a\n"
+         "                 SignalBridge sets the initial controls instead\n"
+         "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
+         "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
+         "                 numbers (the file loads in both either way)\n"
          "  --strict       treat warnings as errors\n"
          "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose, list\n"
          "                 collision geometry that overlaps at the start, then simulate the model from its\n"
-         "                 initial state and report where MuJoCo finds it unstable (an error)\n"
+         "                 initial state and report where MuJoCo finds it unstable (an error); the model is\n"
+         "                 checked where it was modelled, before --pose\n"
          "  --check-time T how long --check simulates, in seconds (default 1; at most 100)\n"
          "  --exclude-initial-overlaps  exclude contacts between bodies whose collision geometry overlaps\n"
          "                 at the start (<contact><exclude>), for parts meant to overlap\n"
          "  --urdf-exact-mesh-mass  a URDF link without <inertial> takes the exact volume of its collision\n"
          "                 meshes (default: MuJoCo's URDF importer's mass, its legacy mesh volumes)\n"
-         "  --prefix P     prepend P to every MuJoCo name\n"
-         "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
-         "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
-         "                 numbers (the file loads in both either way)\n"
-         "  --no-default-bundles  only the bundles of -B and OPENPLX_BUNDLE_PATH (e.g. an AGX "
-         "installation's)\n"
-         "  --no-keyframe  no \"initial\" keyframe, for files <include>d into a bigger scene (a keyframe "
-         "must\n"
-         "                 cover the whole scene; a SignalBridge sets the initial controls)\n"
-         "  --dump=KIND    tokens | ast | values | snap (world frames after assembly)\n"
-         "  --help         show this text\n"
+         "  --depfile DEP  with -o OUT: write DEP, a Make-style dependency file naming every file read\n"
+         "                 (the model, OpenPLX files and bundles, URDFs, meshes, textures), for build\n"
+         "                 systems (CMake's openplx2mjcf_add_model uses it)\n"
+         "  --dump=KIND    print tokens | ast | values | snap (world frames after assembly) to stdout, or\n"
+         "                 to OUT with -o\n"
+         "  -h, --help     show this text\n"
          "  --version      show the version\n"
+         "  --             what follows is the input file, even if it starts with '-'\n"
+         "\n"
+         "An included file brings its <compiler> and <option> (time step, gravity, integrator, solver\n"
+         "settings) into the scene that includes it, overriding the scene's own where they come later:\n"
+         "emit with the scene's --timestep, and include the converted files before the scene's <option>.\n"
          "\n"
          "Exit status: 0 success, 1 errors in the input, 2 usage errors.\n";
 }
@@ -398,6 +423,20 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
                 std::to_string(int(kMaxCheckTime)) + ", not '" + value + "'";
         return std::nullopt;
       }
+      continue;
+    }
+    if (!take_value(args, i, "--pose", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      options.pose = mjcf::parse_placement(value, error);
+      if (!options.pose) {
+        error = "--pose: " + error;
+        return std::nullopt;
+      }
+      continue;
+    }
+    if (!take_value(args, i, "--depfile", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      options.depfile = value;
       continue;
     }
     if (!take_value(args, i, "--prefix", "", value, error, matched)) return std::nullopt;
@@ -474,6 +513,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
       return std::nullopt;
     }
   }
+  if (options.depfile && (!options.output || *options.output == "-" || options.dump != DumpKind::None)) {
+    error = "--depfile needs -o FILE (it names what FILE was made from), and no --dump";
+    return std::nullopt;
+  }
   if (options.output && *options.output != "-") {
     std::error_code ec;
     // The manifest written beside the MJCF counts too: `x.signals.json -o x.xml` would replace
@@ -543,6 +586,16 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
       err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
           << "]\n";
       return kExitInputError;
+    }
+    if (options->depfile) {
+      std::vector<std::string> inputs = source_files(sources);
+      inputs.insert(inputs.end(), converted.asset_inputs.begin(), converted.asset_inputs.end());
+      if (!write_file_atomically(*options->depfile, depfile_text(*options->output, std::move(inputs)),
+                                 write_error)) {
+        err << *options->depfile << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
+            << "]\n";
+        return kExitInputError;
+      }
     }
   }
   leave_to_exit(std::move(converted));

@@ -1,7 +1,6 @@
 // The `openplx2mjcf` command line, callable in-process so tests run it under the sanitizers.
 //
-//   openplx2mjcf FILE [--model NAME] [-o OUT|-] [-B DIR]... [--strict] [--check [--check-time T]]
-//   [--exclude-initial-overlaps] [--dump=tokens|ast|values|snap] [--help] [--version]
+//   openplx2mjcf FILE [options] (usage() lists them all; README "Options" too)
 //
 // Exit status: 0 success (warnings allowed), 1 input errors (diagnostics on `err`), 2 usage errors.
 #pragma once
@@ -10,6 +9,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "mjcf_emitter/placement.h"
 
 namespace openplx::cli {
 
@@ -30,6 +31,8 @@ struct CliOptions {
   bool mujoco3 = false;                   // --mujoco 3: soft-weld laws of MuJoCo 3.x
   bool keyframe = true;                   // --no-keyframe: leave the initial keyframe out
   bool default_bundles = true;            // --no-default-bundles: only -B and OPENPLX_BUNDLE_PATH bundles
+  std::optional<mjcf::Placement> pose;    // --pose "x y z [qw qx qy qz]": the model placed in a scene
+  std::optional<std::string> depfile;     // --depfile FILE: a Make-style list of every file read
   DumpKind dump = DumpKind::None;
   bool help = false;
   bool version = false;

@@ -1,0 +1,24 @@
+// `--depfile FILE`: a Make-style dependency file (as `gcc -MD` writes; CMake's add_custom_command DEPFILE
+// reads it) naming every file a conversion read, so a build re-converts when any of them changes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "frontend/source.h"
+#include "mjcf_emitter/xml.h"
+
+namespace openplx::cli {
+
+// The files MuJoCo will read for `document` (its assets' `file` attributes), absolute; relative ones are
+// taken from `output_dir`, as MuJoCo takes them from the model's folder.
+std::vector<std::string> asset_files(const mjcf::Element& document, const std::string& output_dir);
+
+// Every file of `sources` read from disk (the model, the OpenPLX files and bundles it reaches, URDFs),
+// absolute; texts that are no file (the embedded bundles, generated imports) are left out.
+std::vector<std::string> source_files(const frontend::SourceManager& sources);
+
+// "target: input input ...", one input a line, with spaces, '#' and '$' escaped; inputs sorted and unique.
+std::string depfile_text(const std::string& target, std::vector<std::string> inputs);
+
+}  // namespace openplx::cli
