@@ -149,7 +149,7 @@ void Lowering::emit_inertial(Element& body, int node) {
     body_mass_[node] = {n.body.mass, n.body.cm.position, r * n.body.inertia * r.transpose()};
     write_inertial(body, n.body.mass, n.body.cm.position, n.body.cm.rotation, n.body.inertia,
                    n.body.tensor_where.file != fe::kNoFile ? n.body.tensor_where : n.where,
-                   "`" + n.path + ".inertia.tensor`");
+                   "`" + (n.path.empty() ? "" : n.path + ".") + "inertia.tensor`");
     return;
   }
   std::vector<std::pair<const sn::Geometry*, double>> parts;
