@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake make g++ pkg-config clang-format
-  libmujoco-dev libqhull-dev libmujoco-samples libeigen3-dev liburdfdom-dev libtinyxml2-dev
+  libmujoco-dev libqhull-dev libmujoco-samples libeigen3-dev liburdfdom-dev libtinyxml2-dev libassimp-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev time)
 tests=0
 for arg in "$@"; do
