@@ -25,6 +25,7 @@ Evaluation evaluate_file(const LoadRequest& request, SourceManager& sources, Dia
     const std::string robot = file.stem().string();
     const std::string text = "import @\"" + fs::absolute(file).lexically_normal().generic_string() + "\"\n`" +
                              robot + "_robot` is `" + robot + "`\n";
+    result.program->set_urdf_given_directly();
     result.document = result.program->load_text(request.path + ".openplx", text);
   } else {
     result.document = request.text ? result.program->load_text(request.path, *request.text)

@@ -375,7 +375,8 @@ std::optional<Program::UrdfSource> Program::read_urdf(const std::string& path, c
                  "Could not read imported file " + path + ": " + error);
     return std::nullopt;
   }
-  UrdfImport urdf = import_urdf(path, std::string(sources_.file(*file).text()), model);
+  UrdfImport urdf =
+      import_urdf(path, std::string(sources_.file(*file).text()), model, {urdf_given_directly_});
   for (const UrdfFinding& f : urdf.findings) {
     Diagnostic& d = sink_.report(f.error ? DiagCode::UrdfInvalid : DiagCode::UrdfWarning,
                                  SourceRange{*file, f.offset, f.offset + 1}, f.message);

@@ -156,6 +156,9 @@ class Program {
   DocumentInfo* load_main(const std::string& path);
   // Loads text held in memory as a stand-alone file named `path` (fuzzing, tests).
   DocumentInfo* load_text(const std::string& path, std::string text);
+  // A URDF given directly (pipeline.cpp): no Urdf.PackagePath can name its mesh packages, so the import
+  // reports a `package://` package it finds nowhere (UrdfImportOptions::packages_final).
+  void set_urdf_given_directly() { urdf_given_directly_ = true; }
 
   // Resolves base, traits and entries of a model; false (and diagnostics) on errors such as cycles.
   bool resolve(ModelInfo* model);
@@ -210,6 +213,7 @@ class Program {
   };
   std::optional<UrdfSource> read_urdf(const std::string& path, const std::string& model,
                                       SourceRange import_range);
+  bool urdf_given_directly_ = false;
   Namespace* new_namespace(std::string name, Namespace* parent, std::string dir, const BundleConfig* bundle);
   void flatten(ModelInfo* model, const std::vector<Member>& members, std::vector<std::string_view>& prefix);
   void resolve_bases_first(ModelInfo* model);

@@ -62,4 +62,39 @@ std::optional<fs::path> find_package(const std::string& package, const fs::path&
   return std::nullopt;
 }
 
+std::optional<fs::path> find_beside_urdf(const std::string& inside, const fs::path& urdf_dir) {
+  if (inside.empty()) return std::nullopt;
+  for (fs::path dir = urdf_dir; !dir.empty(); dir = dir.parent_path()) {
+    std::error_code ec;
+    if (fs::is_regular_file(dir / inside, ec)) return dir;
+    if (dir == dir.parent_path()) break;
+  }
+  return std::nullopt;
+}
+
+std::string package_search_text(const std::string& package, const std::string& inside,
+                                const fs::path& urdf_dir) {
+  auto listed = [](const char* variable, const std::string& suffix) {
+    const std::vector<fs::path> entries = path_list(variable);
+    std::string text = std::string(variable);
+    if (entries.empty()) return text + " (not set)";
+    text += " (";
+    for (size_t k = 0; k < entries.size(); ++k) {
+      const fs::path entry = suffix.empty() ? entries[k] : entries[k] / suffix;
+      text += (k ? ", " : "") + entry.lexically_normal().generic_string();
+    }
+    return text + ")";
+  };
+  return "looked in " + listed("ROS_PACKAGE_PATH", "") + ", " + listed("AMENT_PREFIX_PATH", "share") +
+         ", and " + urdf_dir.generic_string() + " and the folders above it (for a folder named " + package +
+         (inside.empty() ? std::string() : " or holding " + inside) + ")";
+}
+
+std::string package_setting_text(const std::string& package) {
+  return "set ROS_PACKAGE_PATH (ROS 1) or AMENT_PREFIX_PATH (ROS 2) so that `" + package +
+         "` is found, or import this URDF from an OpenPLX file that declares a Urdf.PackagePath with name "
+         "\"" +
+         package + "\" and the package's folder as path";
+}
+
 }  // namespace openplx::frontend

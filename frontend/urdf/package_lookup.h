@@ -17,4 +17,15 @@ namespace openplx::frontend {
 std::optional<std::filesystem::path> find_package(const std::string& package,
                                                   const std::filesystem::path& urdf_dir);
 
+// A robot shipped without its package's folder name (a renamed checkout): the first of `urdf_dir` and the
+// folders above it that holds the file `inside`, or nullopt.
+std::optional<std::filesystem::path> find_beside_urdf(const std::string& inside,
+                                                      const std::filesystem::path& urdf_dir);
+
+// Where find_package looked for `package`, in words (for the diagnostic of a package found nowhere).
+std::string package_search_text(const std::string& package, const std::string& inside,
+                                const std::filesystem::path& urdf_dir);
+// What the user can set so that `package` is found.
+std::string package_setting_text(const std::string& package);
+
 }  // namespace openplx::frontend

@@ -3,6 +3,7 @@
 #include <console_bridge/console.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <mutex>
 #include <set>
 
@@ -37,7 +38,8 @@ std::string xml_error_text(const tinyxml2::XMLDocument& doc) {
 
 }  // namespace
 
-UrdfDocument::UrdfDocument(std::string text) : text_(std::move(text)) {
+UrdfDocument::UrdfDocument(std::string text, std::string path)
+    : text_(std::move(text)), path_(std::move(path)) {
   line_starts_.push_back(0);
   for (uint32_t i = 0; i < text_.size(); ++i) {
     if (text_[i] == '\n') line_starts_.push_back(i + 1);
@@ -64,12 +66,48 @@ UrdfDocument::UrdfDocument(std::string text) : text_(std::move(text)) {
     places_.emplace(e, Place{std::move(tag), nth});
     for (const XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
   }
+  find_xacro();
   for (const XMLElement* e = robot_->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const char* name = e->Attribute("name");
     if (!name) continue;
     if (std::string_view(e->Name()) == "link") links_.emplace(name, e);
     if (std::string_view(e->Name()) == "joint") joints_.emplace(name, e);
   }
+}
+
+void UrdfDocument::find_xacro() {
+  std::vector<const XMLElement*> stack{robot_};
+  while (!stack.empty() && !xacro_) {  // document order: the first one is reported
+    const XMLElement* e = stack.back();
+    stack.pop_back();
+    if (std::string_view(e->Name()).substr(0, 6) == "xacro:") xacro_ = e;
+    for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a && !xacro_; a = a->Next()) {
+      const std::string_view value = a->Value();
+      if (value.find("${") != std::string_view::npos || value.find("$(") != std::string_view::npos)
+        xacro_ = e;
+    }
+    for (const XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
+  }
+  std::string extension = std::filesystem::path(path_).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (robot_->Attribute("xmlns:xacro") || extension == ".xacro") xacro_declared_ = robot_;
+}
+
+// The command that expands this file: `xacro arm.urdf.xacro > arm.urdf`.
+std::string UrdfDocument::expand_command() const {
+  const std::filesystem::path file = std::filesystem::path(path_).filename();
+  const std::string name = file.empty() ? "model.urdf.xacro" : file.string();
+  std::string out = file.empty() ? "model.urdf" : file.stem().string();
+  std::string extension = std::filesystem::path(name).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".xacro") {
+    out += ".expanded.urdf";  // not the file itself: the shell would empty it before xacro reads it
+  } else if (std::filesystem::path(out).extension().empty()) {
+    out += ".urdf";
+  }
+  return "`xacro " + name + " > " + out + "`";
 }
 
 uint32_t UrdfDocument::offset_of_line(int line) const {
@@ -222,6 +260,19 @@ std::optional<UrdfFinding> UrdfDocument::loop_finding() const {
 }
 
 std::string UrdfDocument::lenient_text() {
+  if (xacro_) {  // the rest would only be the template's placeholders, each an error
+    const std::string what = std::string_view(xacro_->Name()).substr(0, 6) == "xacro:"
+                                 ? "<" + std::string(xacro_->Name()) + ">"
+                                 : "a ${...} or $(...) placeholder";
+    findings_.push_back({true,
+                         offset_of(xacro_),
+                         "this is an unexpanded xacro template (" + what +
+                             " here), not a URDF: a URDF reader would see only what lies outside its macros. "
+                             "Expand it first: " +
+                             expand_command() + ", and convert the result",
+                         {}});
+    return text_;
+  }
   bool changed = check_values();
   // The DOM itself (not the const index) is edited here.
   for (XMLElement* j = doc_.FirstChildElement("robot")->FirstChildElement("joint"); j;
@@ -296,6 +347,14 @@ UrdfFinding UrdfDocument::locate(const std::vector<std::string>& messages) const
   if (!located && !finding.notes.empty()) {
     finding.message = finding.notes.front().substr(9);  // urdfdom's first message, at <robot>
     finding.notes.erase(finding.notes.begin());
+  }
+  if (xacro_declared_) {
+    const std::string why =
+        xacro_declared_->Attribute("xmlns:xacro")
+            ? "declares the xacro namespace (line " + std::to_string(xacro_declared_->GetLineNum()) + ")"
+            : "is named as a xacro template";
+    finding.notes.push_back("the file " + why + ": if it is a template, expand it first: " +
+                            expand_command() + ", and convert the result");
   }
   return finding;
 }

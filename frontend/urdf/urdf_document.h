@@ -19,8 +19,9 @@ namespace openplx::frontend {
 
 class UrdfDocument {
  public:
-  // Parses `text`; a malformed document gives one located error in `findings()`.
-  explicit UrdfDocument(std::string text);
+  // Parses `text` (the file at `path`, named in hints); a malformed document gives one located error in
+  // `findings()`.
+  explicit UrdfDocument(std::string text, std::string path = "");
 
   bool well_formed() const { return well_formed_; }
   const std::string& text() const { return text_; }
@@ -54,6 +55,15 @@ class UrdfDocument {
   std::optional<UrdfFinding> loop_finding() const;
   const tinyxml2::XMLElement* element_with_attribute_text(const std::string& needle) const;
   bool check_values();  // urdf_values.cpp; true when the DOM was rewritten
+  void find_xacro();    // sets xacro_ and xacro_declared_
+  std::string expand_command() const;
+
+  std::string path_;
+  // An unexpanded xacro template: its first `<xacro:...>` element or `${...}`/`$(...)` attribute (a
+  // reader would see only what lies outside its macros), or null.
+  const tinyxml2::XMLElement* xacro_ = nullptr;
+  // The xacro namespace or a .xacro name, which expanded files keep too: a hint only when the robot fails.
+  const tinyxml2::XMLElement* xacro_declared_ = nullptr;
 
   std::string text_;
   tinyxml2::XMLDocument doc_;

@@ -70,6 +70,7 @@ class Writer {
   explicit Writer(const UrdfDocument& doc) : doc_(doc) {}
   // Lines written from now on come from element `e` (the `<robot>` element when null).
   void from(const XMLElement* e) { origin_ = doc_.offset_of(e ? e : doc_.robot()); }
+  uint32_t origin() const { return origin_; }  // the URDF byte offset lines are written from now
   void line(const std::string& text) {
     out_ += text;
     out_ += '\n';
@@ -101,17 +102,24 @@ class Writer {
 
 // Where a mesh file is: relative names resolve against the URDF's folder; `package://P/rest` against
 // package P as find_package looks it up (a Urdf.PackagePath in the model overrides this later, see
-// `package_uri`), or the URDF's folder when no package of that name is found (the missing file is then
-// reported with its path).
-std::string mesh_path(const std::string& filename, const fs::path& urdf_dir) {
+// `package_uri`), else against the first of the URDF's folder and those above it that holds `rest` (a
+// robot checked out under another name). `missing_package` is P when neither finds it: the path is then
+// `rest` in the URDF's folder.
+struct MeshFile {
+  std::string path;
+  std::optional<PackageUri> missing_package;
+};
+MeshFile mesh_path(const std::string& filename, const fs::path& urdf_dir) {
   std::string name = filename;
   if (name.rfind("file://", 0) == 0) name = name.substr(7);
   if (const std::optional<PackageUri> uri = parse_package_uri(name)) {
-    const fs::path root = find_package(uri->package, urdf_dir).value_or(urdf_dir);
-    return (root / uri->inside).lexically_normal().generic_string();
+    std::optional<fs::path> root = find_package(uri->package, urdf_dir);
+    if (!root) root = find_beside_urdf(uri->inside, urdf_dir);
+    return {(root.value_or(urdf_dir) / uri->inside).lexically_normal().generic_string(),
+            root ? std::nullopt : uri};
   }
   const fs::path p(name);
-  return (p.is_absolute() ? p : urdf_dir / p).lexically_normal().generic_string();
+  return {(p.is_absolute() ? p : urdf_dir / p).lexically_normal().generic_string(), std::nullopt};
 }
 
 struct Context {
@@ -120,6 +128,7 @@ struct Context {
   fs::path urdf_dir;
   std::vector<UrdfFinding>& findings;
   std::map<std::string, std::string> materials;  // URDF material name -> generated model name
+  bool packages_final = false;                   // UrdfImportOptions::packages_final
 };
 
 // The shape element (<box>, <mesh>, ...) of a link's nth <collision> or <visual>.
@@ -157,10 +166,23 @@ bool geometry(Context& c, const std::string& name, const urdf::Geometry& g, cons
     }
     case urdf::Geometry::MESH: {
       const auto& m = static_cast<const urdf::Mesh&>(g);
-      const std::string file = mesh_path(m.filename, c.urdf_dir);
+      const MeshFile mesh = mesh_path(m.filename, c.urdf_dir);
+      const std::string& file = mesh.path;
       if (file.find('"') != std::string::npos || m.filename.find('"') != std::string::npos) {
-        c.findings.push_back({true, 0, "mesh path contains a quote: " + m.filename, {}});
+        c.findings.push_back({true, c.w.origin(), "mesh path contains a quote: " + m.filename, {}});
         return false;
+      }
+      // A package found nowhere, with no Urdf.PackagePath to come: said here, at the <mesh>. A visual is
+      // left out (a robot's looks never stop it loading); a collision mesh cannot be.
+      if (mesh.missing_package && c.packages_final) {
+        const PackageUri& uri = *mesh.missing_package;
+        c.findings.push_back(
+            {!visual,
+             c.w.origin(),
+             "mesh " + m.filename + ": package `" + uri.package + "` not found" +
+                 (visual ? "; this visual was left out" : ""),
+             {package_search_text(uri.package, uri.inside, c.urdf_dir), package_setting_text(uri.package)}});
+        return true;  // nothing written: the visual is left out, the error stops the import
       }
       c.w.line("        " + id(name) + " is " + ns + "ExternalTriMeshGeometry:");
       c.w.line(in + "path: @\"" + file + "\"");
@@ -364,10 +386,10 @@ Eigen::Vector3d connector_normal(const urdf::Joint& joint) {
 
 }  // namespace
 
-UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text,
-                        const std::string& model_name) {
+UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name,
+                        const UrdfImportOptions& options) {
   UrdfImport result;
-  UrdfDocument doc(urdf_text);
+  UrdfDocument doc(urdf_text, path);
   if (!doc.well_formed()) {
     result.findings = std::move(doc.findings());
     return result;
@@ -392,7 +414,7 @@ UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text,
   }
   result.robot_name = robot->getName();
   Writer w(doc);
-  Context c{doc, w, fs::path(path).parent_path(), result.findings, {}};
+  Context c{doc, w, fs::path(path).parent_path(), result.findings, {}, options.packages_final};
   std::vector<urdf::JointSharedPtr> joints;
   for (const auto& [name, joint] : robot->joints_) joints.push_back(joint);  // std::map: name order
   // Names become backtick identifiers: a backtick or a line break cannot be in one.

@@ -20,6 +20,7 @@ namespace openplx::frontend {
 
 // Converts the URDF at `path` whose text is `urdf_text` into model `model_name`. Runs inside the importer
 // module; the front end calls import_urdf (urdf_importer.h).
-UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name);
+UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name,
+                        const UrdfImportOptions& options = {});
 
 }  // namespace openplx::frontend

@@ -100,9 +100,10 @@ void add_urdf_module_candidate(const std::string& path) {
   extra_candidates().push_back(path);
 }
 
-UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name) {
+UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name,
+                       const UrdfImportOptions& options) {
 #ifdef OPENPLX_URDF_LINKED  // fuzz builds link the importer in, so its code is instrumented with theirs
-  return convert_urdf(path, urdf_text, model_name);
+  return convert_urdf(path, urdf_text, model_name, options);
 #else
   UrdfImport result;
   const LoadedModule& module = loaded_module();
@@ -111,7 +112,8 @@ UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, co
     return result;
   }
   const OpenplxUrdfSink sink = sink_for(&result);
-  module.import(path.c_str(), urdf_text.data(), urdf_text.size(), model_name.c_str(), &sink);
+  module.import(path.c_str(), urdf_text.data(), urdf_text.size(), model_name.c_str(),
+                options.packages_final ? OPENPLX_URDF_PACKAGES_FINAL : 0u, &sink);
   return result;
 #endif
 }

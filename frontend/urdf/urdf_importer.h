@@ -10,7 +10,8 @@
 namespace openplx::frontend {
 
 // Imports the URDF at `path` whose text is `urdf_text` as model `model_name`.
-UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name);
+UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name,
+                       const UrdfImportOptions& options = {});
 
 // Adds a file tried for the module after the ones beside the executable and in this build (the installed
 // CMake package registers its own through the runtime's public header).

@@ -13,15 +13,13 @@ void send(void (*to)(void*, const char*, size_t), void* context, const std::stri
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) int openplx_urdf_import_v1(const char* path,
-                                                                             const char* urdf_text,
-                                                                             size_t urdf_size,
-                                                                             const char* model_name,
-                                                                             const OpenplxUrdfSink* sink) {
+extern "C" __attribute__((visibility("default"))) int openplx_urdf_import_v2(
+    const char* path, const char* urdf_text, size_t urdf_size, const char* model_name, unsigned options,
+    const OpenplxUrdfSink* sink) {
   using openplx::frontend::UrdfFinding;
   try {
-    const openplx::frontend::UrdfImport result =
-        openplx::frontend::convert_urdf(path, std::string(urdf_text, urdf_size), model_name);
+    const openplx::frontend::UrdfImport result = openplx::frontend::convert_urdf(
+        path, std::string(urdf_text, urdf_size), model_name, {(options & OPENPLX_URDF_PACKAGES_FINAL) != 0});
     for (const UrdfFinding& f : result.findings) {
       sink->finding(sink->context, f.error, f.offset, f.message.data(), f.message.size());
       for (const std::string& note : f.notes) send(sink->note, sink->context, note);

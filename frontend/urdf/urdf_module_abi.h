@@ -20,11 +20,16 @@ struct OpenplxUrdfSink {
   void (*robot_name)(void* context, const char* data, size_t size);
 };
 
+// `options`: OPENPLX_URDF_PACKAGES_FINAL when no Urdf.PackagePath can name a package later (a URDF given
+// directly), so a `package://` package found nowhere is reported at its <mesh>.
+#define OPENPLX_URDF_PACKAGES_FINAL 1u
+
 // Returns 0, or 1 when the importer failed inside (its message is then a finding at offset 0).
 typedef int (*OpenplxUrdfImportFunction)(const char* path, const char* urdf_text, size_t urdf_size,
-                                         const char* model_name, const OpenplxUrdfSink* sink);
+                                         const char* model_name, unsigned options,
+                                         const OpenplxUrdfSink* sink);
 
 }  // extern "C"
 
 // The entry point's name; a changed interface gets a new name, so a stale module cannot be misread.
-#define OPENPLX_URDF_IMPORT_SYMBOL "openplx_urdf_import_v1"
+#define OPENPLX_URDF_IMPORT_SYMBOL "openplx_urdf_import_v2"

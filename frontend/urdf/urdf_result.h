@@ -17,6 +17,14 @@ struct UrdfFinding {
   std::vector<std::string> notes;
 };
 
+// How a URDF is imported.
+struct UrdfImportOptions {
+  // No Urdf.PackagePath can name a package after the import (a URDF given directly): a `package://` package
+  // found nowhere is reported at its <mesh> (an error for collision, a warning and left out for a visual).
+  // Otherwise the mesh is looked for beside the URDF and, missing, reported when the model is emitted.
+  bool packages_final = false;
+};
+
 struct UrdfImport {
   std::optional<std::string> text;     // OpenPLX declaring the model; nullopt when the URDF is rejected
   std::vector<uint32_t> line_origins;  // per generated line: a byte offset into the URDF text
