@@ -8,6 +8,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -121,6 +122,44 @@ std::string ascii_ply(const Eigen::Vector3d& size) {
   return out.str();
 }
 
+std::string base64(const std::string& bytes) {
+  static const char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (size_t k = 0; k < bytes.size(); k += 3) {
+    uint32_t v = static_cast<unsigned char>(bytes[k]) << 16;
+    if (k + 1 < bytes.size()) v |= static_cast<unsigned char>(bytes[k + 1]) << 8;
+    if (k + 2 < bytes.size()) v |= static_cast<unsigned char>(bytes[k + 2]);
+    const size_t n = std::min<size_t>(3, bytes.size() - k);  // bytes in this group: n + 1 digits
+    for (size_t d = 0; d < 4; ++d) text += d <= n ? kDigits[(v >> (18 - 6 * d)) & 63] : '=';
+  }
+  return text;
+}
+
+// The box as glTF (Y up by the standard), its buffer inline.
+std::string gltf(const Eigen::Vector3d& size) {
+  std::string buffer;
+  for (const Eigen::Vector3d& p : corners(size, Eigen::Vector3d::Zero()))
+    for (int a = 0; a < 3; ++a) {
+      const float f = static_cast<float>(p[a]);
+      buffer.append(reinterpret_cast<const char*>(&f), 4);
+    }
+  for (const auto& t : box_triangles())
+    for (int k : t) {
+      const uint16_t index = static_cast<uint16_t>(k);
+      buffer.append(reinterpret_cast<const char*>(&index), 2);
+    }
+  std::ostringstream out;
+  out << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+      << R"("buffers":[{"byteLength":168,"uri":"data:application/octet-stream;base64,)" << base64(buffer)
+      << R"("}],)"
+      << R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":72}],)"
+      << R"("accessors":[{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3","min":[0,0,0],"max":[)"
+      << size.x() << ',' << size.y() << ',' << size.z() << R"(]},)"
+      << R"({"bufferView":1,"componentType":5123,"count":36,"type":"SCALAR"}]})";
+  return out.str();
+}
+
 void write(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -219,6 +258,21 @@ TEST(MeshConversion, ColladaUnitIsHonouredAndUpAxisKeepsCoordinatesAsWritten) {
   }
 }
 
+// glTF is Y up by its standard: turned onto Z as RViz turns it, (x, y, z) -> (x, -z, y).
+TEST(MeshConversion, GltfYUpIsTurnedOntoZ) {
+  const ScratchDir dir;
+  write(dir / "box.gltf", gltf({0.1, 0.2, 0.3}));
+  write(dir / "scene.openplx", scene("box.gltf"));
+  const Conversion r = cli({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string()});
+  ASSERT_EQ(r.status, 0) << r.errors;
+  const Model model(dir / "scene.xml");
+  if (!model.m) return;
+  EXPECT_NEAR(model.mass("body"), 6, 1e-4);
+  const auto [lo, hi] = model.extents("body.shape");
+  EXPECT_LT((lo - Eigen::Vector3d(0, -0.3, 0)).norm(), 1e-6) << lo.transpose();
+  EXPECT_LT((hi - Eigen::Vector3d(0.1, 0, 0.2)).norm(), 1e-6) << hi.transpose();
+}
+
 // A cube of side 1 in a file whose unit is the millimetre is 1 mm; the mesh's scale applies on top.
 TEST(MeshConversion, ScaleAppliesOnTopOfTheUnit) {
   const ScratchDir dir;
@@ -274,7 +328,9 @@ TEST(MeshConversion, StdoutHoldsTheMeshInline) {
   EXPECT_FALSE(fs::exists(dir / "scene.meshes"));
   write(dir / "inline.xml", r.out);
   const Model model(dir / "inline.xml");
-  if (model.m) EXPECT_NEAR(model.mass("body"), 6, 1e-4);
+  if (model.m) {
+    EXPECT_NEAR(model.mass("body"), 6, 1e-4);
+  }
 }
 
 // The same input writes the same bytes, under the same names.
@@ -334,7 +390,9 @@ TEST(MeshConversion, MoreTrianglesThanMuJoCoReadsFromStlBecomeObj) {
   EXPECT_EQ(r.errors, "");
   EXPECT_TRUE(fs::is_regular_file(dir / "scene.meshes" / "big.obj"));
   const Model model(dir / "scene.xml");
-  if (model.m) EXPECT_NEAR(model.mass("body"), 6, 1e-4);
+  if (model.m) {
+    EXPECT_NEAR(model.mass("body"), 6, 1e-4);
+  }
 }
 
 // A URDF robot with COLLADA meshes; a missing visual mesh is a warning at its URDF <mesh> element and the
