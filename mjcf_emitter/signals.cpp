@@ -407,12 +407,12 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
 }
 
 void Lowering::bind_connector(SignalBinding& b, std::string_view stem, int c) {
-  const Quantity q = b.input                       ? Quantity::None
-                     : stem == "Position3D"        ? Quantity::SitePosition
-                     : stem == "RPY"               ? Quantity::SiteRPY
-                     : stem == "LinearVelocity3D"  ? Quantity::SiteLinearVelocity
-                     : stem == "AngularVelocity3D" ? Quantity::SiteAngularVelocity
-                                                   : Quantity::None;
+  const Quantity q = b.input                                      ? Quantity::None
+                     : stem == "Position3D" || stem == "Position" ? Quantity::SitePosition
+                     : stem == "RPY"                              ? Quantity::SiteRPY
+                     : stem == "LinearVelocity3D"                 ? Quantity::SiteLinearVelocity
+                     : stem == "AngularVelocity3D"                ? Quantity::SiteAngularVelocity
+                                                                  : Quantity::None;
   if (q == Quantity::None) return unmapped(b, "no MuJoCo quantity of a mate connector matches it");
   return mapped(b, q, MjObject::Site, site_for(c));
 }
