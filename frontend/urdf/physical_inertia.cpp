@@ -1,11 +1,20 @@
 #include "frontend/urdf/physical_inertia.h"
 
+#include <charconv>
 #include <cmath>
 #include <sstream>
 
 #include "frontend/urdf/mujoco_principal_inertia.h"
 
 namespace openplx::frontend {
+namespace {
+// The shortest text that reads back as `v` (the moments that decide are often 1 ulp apart).
+std::string shortest(double v) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  return std::string(buffer, error == std::errc() ? end : buffer);
+}
+}  // namespace
 
 std::optional<InertiaRepair> repair_inertia(double mass, const Eigen::Matrix3d& tensor) {
   if (!(mass > 0)) return std::nullopt;
@@ -16,23 +25,22 @@ std::optional<InertiaRepair> repair_inertia(double mass, const Eigen::Matrix3d& 
   const bool triangle = mujoco_inertia::triangle(p);
   if (positive && triangle && p[0] > 0 && p[1] > 0 && p[2] > 0) return std::nullopt;
   std::ostringstream what;
-  what.precision(17);
   if (positive && triangle) {  // an ideal rod (or point): a limit of physical bodies MuJoCo accepts
-    what << "principal moments " << p[0] << ", " << p[1] << ", " << p[2]
+    what << "principal moments " << shortest(p[0]) << ", " << shortest(p[1]) << ", " << shortest(p[2])
          << " include a zero (an ideal thin rod); kept as written, as MuJoCo's own importer keeps it";
     return InertiaRepair{tensor, what.str()};
   }
-  what << "principal moments " << p[0] << ", " << p[1] << ", " << p[2]
+  what << "principal moments " << shortest(p[0]) << ", " << shortest(p[1]) << ", " << shortest(p[2])
        << (positive ? " (as MuJoCo computes them) violate the triangle inequality A + B >= C, which MuJoCo "
                       "checks exactly"
                     : " are not all positive");
   double mean = (p[0] + p[1] + p[2]) / 3;
   if (mean > 0) {
-    what << "; they were set to their mean " << mean << " (MuJoCo's balanceinertia)";
+    what << "; they were set to their mean " << shortest(mean) << " (MuJoCo's balanceinertia)";
   } else {
     const double radius = std::cbrt(3 * mass / (4 * M_PI * 1000.0));
     mean = 0.4 * mass * radius * radius;
-    what << "; they were set to " << mean << ", a solid sphere's of the same mass at water density";
+    what << "; they were set to " << shortest(mean) << ", a solid sphere's of the same mass at water density";
   }
   return InertiaRepair{mean * Eigen::Matrix3d::Identity(), what.str()};  // equal moments: any frame
 }

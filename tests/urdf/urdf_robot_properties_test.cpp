@@ -157,8 +157,9 @@ TEST_F(UrdfRobotProperties, NonPhysicalInertiaIsRepairedWithAWarning) {
   EXPECT_NE(
       err.find(
           (dir_ / "arm.urdf").string() +
-          ":9:56: warning: link `arm` has a non-physical inertia: principal moments 0.01, 0.01, 0.1 "
-          "violate the triangle inequality (A + B >= C); they were set to their mean 0.04 [urdf-warning]"),
+          ":9:56: warning: link `arm` has a non-physical inertia: principal moments 0.1, 0.01, 0.01 (as "
+          "MuJoCo computes them) violate the triangle inequality A + B >= C, which MuJoCo checks exactly; "
+          "they were set to their mean 0.04 (MuJoCo's balanceinertia) [urdf-warning]"),
       std::string::npos)
       << err;
   rt::Simulation sim = rt::Simulation::load(path.string());
