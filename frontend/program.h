@@ -159,6 +159,7 @@ class Program {
   // A URDF given directly (pipeline.cpp): no Urdf.PackagePath can name its mesh packages, so the import
   // reports a `package://` package it finds nowhere (UrdfImportOptions::packages_final).
   void set_urdf_given_directly() { urdf_given_directly_ = true; }
+  bool urdf_given_directly() const { return urdf_given_directly_; }
 
   // Resolves base, traits and entries of a model; false (and diagnostics) on errors such as cycles.
   bool resolve(ModelInfo* model);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -120,6 +122,51 @@ class Locator {
   std::unordered_map<std::string, frontend::SourceRange> nodes_, mates_, interactions_;
   frontend::SourceRange root_;
 };
+
+// The declaration of the item emitted as MuJoCo element `path` (unprefixed): a body, a mate or an
+// interaction of that path, else of the nearest enclosing path (`arm.collision_0` is on body `arm`). Found
+// without a compiled model, for the elements of a model MuJoCo refused.
+frontend::SourceRange declaration_of(const snap::ResolvedSystem& view, std::string path) {
+  while (!path.empty()) {
+    for (const snap::FrameNode& n : view.nodes)
+      if (n.path == path) return n.where;
+    for (const snap::Mate& m : view.mates)
+      if (m.path == path) return m.where;
+    for (const snap::Interaction1D& i : view.interactions)
+      if (i.path == path) return i.where;
+    const size_t dot = path.rfind('.');
+    if (dot == std::string::npos) break;
+    path.resize(dot);
+  }
+  return {};
+}
+
+// The MuJoCo name of the element MuJoCo's compiler names in `error`: "Object name = NAME, id = ..." (MuJoCo
+// 2.2.2), "Element name 'NAME'", or else the `name` of the element at "line = L" of the MJCF file.
+std::string element_named_in(const std::string& error, const std::string& xml_path) {
+  for (const auto& [before, after] : {std::pair{"Object name = ", ","}, std::pair{"Element name '", "'"}}) {
+    const size_t at = error.find(before);
+    if (at == std::string::npos) continue;
+    const size_t begin = at + std::string_view(before).size();
+    const size_t end = error.find(after, begin);
+    if (end != std::string::npos && end > begin) return error.substr(begin, end - begin);
+  }
+  const size_t at = error.find("line = ");
+  if (at == std::string::npos) return "";
+  const int line = std::atoi(error.c_str() + at + 7);
+  std::ifstream in(xml_path);
+  std::string text;
+  for (int k = 0; k < line && std::getline(in, text); ++k) {
+  }
+  const size_t name = text.find(" name=\"");
+  if (line < 1 || name == std::string::npos) return "";
+  const size_t begin = name + 7, end = text.find('"', begin);
+  return end == std::string::npos ? "" : text.substr(begin, end - begin);
+}
+
+std::string without_prefix(const std::string& name, const std::string& prefix) {
+  return name.compare(0, prefix.size(), prefix) == 0 ? name.substr(prefix.size()) : name;
+}
 
 std::string overlap_report(const Locator& names, const InitialOverlap& o) {
   std::string why;
@@ -288,6 +335,8 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
   mjModel* model = mj->loadXML(xml_path.c_str(), nullptr, error, sizeof(error));
   if (!model) {
     result.load_error = error;
+    const std::string element = element_named_in(error, xml_path);
+    if (!element.empty()) result.load_error_where = declaration_of(view, without_prefix(element, prefix));
     return result;
   }
   result.loaded = true;
@@ -317,6 +366,7 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
     const int id = mj->name2id(model, mjOBJ_BODY, name.c_str());
     if (id < 0) {
       result.problems.push_back("body " + name + " is missing from the MJCF");
+      result.problem_where.push_back(node.where);
       continue;
     }
     const Eigen::Vector3d pos(data->xpos[3 * id], data->xpos[3 * id + 1], data->xpos[3 * id + 2]);
@@ -330,6 +380,7 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
     if (!(dp <= options.tolerance) || !(dq <= options.tolerance)) {
       result.problems.push_back("body " + name + " is " + number(dp) + " m and " + number(dq) +
                                 " rad away from its SNAP pose");
+      result.problem_where.push_back(node.where);
     }
   }
   // Equality residuals: the constraint rows' violations after mj_forward.
@@ -342,6 +393,8 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
       const char* eq_name = mj->id2name(model, mjOBJ_EQUALITY, eq);
       result.problems.push_back(std::string("equality ") + (eq_name ? eq_name : std::to_string(eq)) +
                                 " starts violated by " + number(r));
+      result.problem_where.push_back(eq_name ? declaration_of(view, without_prefix(eq_name, prefix))
+                                             : frontend::SourceRange{});
     }
   }
   // From the initial keyframe on: the overlaps it starts with, then its motion.

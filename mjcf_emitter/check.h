@@ -62,6 +62,10 @@ struct CheckResult {
   bool loaded = false;
   std::string load_error;             // MuJoCo's message when loading failed
   std::vector<std::string> problems;  // pose or constraint mismatches, one line each
+  // Where each of `problems` points (same order): the body's or equality's declaration, or no file.
+  std::vector<frontend::SourceRange> problem_where;
+  // The declaration of the element MuJoCo names in `load_error` ("Object name = arm"), or no file.
+  frontend::SourceRange load_error_where;
   double max_position_error = 0.0;
   double max_rotation_error = 0.0;
   double max_equality_residual = 0.0;

@@ -1,8 +1,8 @@
 // What real URDF files bring to the import's door (issue 31): file names in any case (`robot.URDF`), numbers
 // written every way urdfdom reads them (and no way it does not), unexpanded xacro templates, `package://`
 // meshes whose package is nowhere, and `--check` findings placed at the URDF element they concern.
-#include <gtest/gtest.h>
 #include <console_bridge/console.h>
+#include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -146,6 +146,161 @@ TEST(UrdfInputEdges, NumbersAreReadExactlyAsUrdfdomReadsThem) {
   };
   for (const std::string& upper : scalars) check("0 0 1", upper, 7);
   for (const std::string& xyz : lists) check(xyz, "1", 6);
+}
+
+// An unexpanded xacro template is an error at its first xacro construct (an element or a ${...}
+// placeholder) that says to expand it first, whatever its name; a URDF that declares xacro and fails for
+// another reason gets that hint as a note.
+TEST(UrdfInputEdges, XacroTemplatesAskToBeExpandedFirst) {
+  const openplx::testing::ScratchDir dir;
+  std::string err;
+  std::ofstream(dir / "arm.urdf.xacro")
+      << "<?xml version=\"1.0\"?>\n"
+         "<robot name=\"arm\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n"
+         "  <xacro:include filename=\"$(find arm)/urdf/parts.xacro\"/>\n"
+         "  <xacro:arm_link name=\"base\"/>\n"
+         "</robot>\n";
+  const fs::path xacro = dir / "arm.urdf.xacro";
+  EXPECT_EQ(cli({xacro.string(), "-o", (dir / "arm.xml").string()}, &err), openplx::cli::kExitInputError);
+  EXPECT_EQ(err.find(xacro.string() +
+                     ":3:3: error: this is an unexpanded xacro template (<xacro:include> here), not a URDF"),
+            0u)
+      << err;
+  EXPECT_NE(err.find("Expand it first: `xacro arm.urdf.xacro > arm.urdf`"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "arm.xml"));
+  // Placeholders alone, in a file named .urdf: at the element holding the first one.
+  std::ofstream(dir / "box.urdf")
+      << "<robot name=\"box\">\n"
+         "  <link name=\"base\">\n"
+         "    <collision><geometry><box size=\"${width} 1 1\"/></geometry></collision>\n"
+         "  </link>\n"
+         "</robot>\n";
+  EXPECT_EQ(cli({(dir / "box.urdf").string(), "-o", (dir / "box.xml").string()}, &err),
+            openplx::cli::kExitInputError);
+  EXPECT_EQ(err.find((dir / "box.urdf").string() + ":3:26: error: this is an unexpanded xacro template (a " +
+                     "${...} or $(...) placeholder here)"),
+            0u)
+      << err;
+  EXPECT_NE(err.find("`xacro box.urdf > box.expanded.urdf`"), std::string::npos) << err;
+  // xacro's output keeps the namespace: urdfdom's own failure, with the hint as a note.
+  std::ofstream(dir / "empty.urdf") << "<?xml version=\"1.0\"?>\n"
+                                       "<robot name=\"e\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n"
+                                       "</robot>\n";
+  EXPECT_EQ(cli({(dir / "empty.urdf").string()}, &err), openplx::cli::kExitInputError);
+  EXPECT_EQ(err.find((dir / "empty.urdf").string() + ":2:1: error: No link elements found"), 0u) << err;
+  EXPECT_NE(err.find("note: the file declares the xacro namespace (line 2): if it is a template, expand it "
+                     "first: `xacro empty.urdf > empty.expanded.urdf`"),
+            std::string::npos)
+      << err;
+  // An expanded file that keeps the namespace converts.
+  std::ofstream(dir / "kept.urdf")
+      << "<robot name=\"k\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n"
+         "  <link name=\"base\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" "
+         "iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+         "</robot>\n";
+  EXPECT_EQ(cli({(dir / "kept.urdf").string(), "-o", (dir / "kept.xml").string(), "--check"}, &err), 0)
+      << err;
+}
+
+// A robot whose meshes name `package://robot_pkg/...`, with a collision mesh on line 4 and a visual one on
+// line 5.
+std::string packaged_robot(const std::string& package) {
+  return "<?xml version=\"1.0\"?>\n"
+         "<robot name=\"pk\">\n"
+         "  <link name=\"base\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" "
+         "ixy=\"0\" "
+         "ixz=\"0\" iyz=\"0\"/></inertial>\n"
+         "    <collision><geometry><mesh filename=\"package://" +
+         package +
+         "/meshes/hull.stl\"/></geometry></collision>\n"
+         "    <visual><geometry><mesh filename=\"package://" +
+         package +
+         "/meshes/look.stl\"/></geometry></visual>\n"
+         "  </link>\n"
+         "</robot>\n";
+}
+
+// A package found nowhere is said at the <mesh> naming it: the package, where it was looked for (the
+// variables' folders, the URDF's folder and those above it) and what to set. A collision mesh is an error; a
+// visual one a warning, and the robot converts without it.
+TEST(UrdfInputEdges, PackageFoundNowhereIsSaidWithWhereItWasLookedFor) {
+  const openplx::testing::ScratchDir dir;
+  const ScopedEnv ros("ROS_PACKAGE_PATH", (dir / "ws" / "src").string());
+  const ScopedEnv ament("AMENT_PREFIX_PATH", (dir / "install").string());
+  fs::create_directories(dir / "robot" / "urdf");
+  const fs::path urdf = dir / "robot" / "urdf" / "pk.urdf";
+  std::ofstream(urdf) << packaged_robot("robot_pkg");
+  std::string err;
+  EXPECT_EQ(cli({urdf.string(), "-o", (dir / "pk.xml").string()}, &err), openplx::cli::kExitInputError);
+  EXPECT_EQ(err.find(urdf.string() +
+                     ":4:26: error: mesh package://robot_pkg/meshes/hull.stl: package `robot_pkg` not found "
+                     "[urdf-invalid]"),
+            0u)
+      << err;
+  EXPECT_NE(err.find("note: looked in ROS_PACKAGE_PATH (" + (dir / "ws" / "src").string() +
+                     "), AMENT_PREFIX_PATH (" + (dir / "install" / "share").string() + "), and " +
+                     (dir / "robot" / "urdf").string() +
+                     " and the folders above it (for a folder named robot_pkg or holding meshes/hull.stl)"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("note: set ROS_PACKAGE_PATH (ROS 1) or AMENT_PREFIX_PATH (ROS 2) so that `robot_pkg` is "
+                     "found, or import this URDF from an OpenPLX file that declares a Urdf.PackagePath with "
+                     "name \"robot_pkg\""),
+            std::string::npos)
+      << err;
+  EXPECT_NE(
+      err.find(urdf.string() +
+               ":5:23: warning: mesh package://robot_pkg/meshes/look.stl: package `robot_pkg` not found; "
+               "this visual was left out [urdf-warning]"),
+      std::string::npos)
+      << err;
+  EXPECT_EQ(err.find("mjcf-missing-asset"), std::string::npos) << err;  // not said again when emitted
+  // The collision mesh found beside the robot (a checkout under another name than its package): it loads,
+  // the visual still warned and left out.
+  openplx::testing::write_tetrahedron(dir / "robot" / "meshes" / "hull.stl");
+  EXPECT_EQ(cli({urdf.string(), "-o", (dir / "pk.xml").string(), "--check"}, &err), 0) << err;
+  EXPECT_NE(err.find(urdf.string() + ":5:23: warning: mesh package://robot_pkg/meshes/look.stl"),
+            std::string::npos)
+      << err;
+  rt::Simulation sim = rt::Simulation::load(urdf.string());
+  EXPECT_EQ(sim.model()->nmesh, 1);
+  EXPECT_EQ(sim.model()->ngeom, 1);
+  // Imported from OpenPLX, a Urdf.PackagePath can still name the package: nothing is said at the import.
+  openplx::testing::write_tetrahedron(dir / "elsewhere" / "meshes" / "look.stl");
+  std::ofstream(dir / "scene.openplx") << "import @\"robot/urdf/pk.urdf\"\nScene is pk:\n"
+                                          "    pkg is Urdf.PackagePath:\n        name: \"robot_pkg\"\n"
+                                          "        path: @\"elsewhere\"\n";
+  openplx::testing::write_tetrahedron(dir / "elsewhere" / "meshes" / "hull.stl");
+  EXPECT_EQ(cli({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string(), "--check"}, &err), 0)
+      << err;
+  EXPECT_EQ(err.find("not found"), std::string::npos) << err;
+}
+
+// --check's findings about a URDF's parts are placed at the URDF element they concern, as the import's own
+// are. MuJoCo refuses a moving body lighter than mjMINVAL (1e-15 kg), which the conversion lets through:
+// its compiler names the body, and the error lands on its <link> (line 6), not on the generated document.
+TEST(UrdfInputEdges, CheckFindingsAreAtTheUrdfElement) {
+  const openplx::testing::ScratchDir dir;
+  const fs::path urdf = dir / "tiny.urdf";
+  std::ofstream(urdf)
+      << "<?xml version=\"1.0\"?>\n"
+         "<robot name=\"tiny\">\n"
+         "  <link name=\"base\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" "
+         "izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+         "  <joint name=\"j\" type=\"continuous\"><parent link=\"base\"/><child link=\"arm\"/>"
+         "<axis xyz=\"0 0 1\"/></joint>\n"
+         "\n"
+         "  <link name=\"arm\"><inertial><mass value=\"1e-20\"/><inertia ixx=\"1e-20\" "
+         "iyy=\"1e-20\" izz=\"1e-20\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+         "</robot>\n";
+  std::string err;
+  EXPECT_EQ(cli({urdf.string(), "-o", (dir / "tiny.xml").string(), "--check"}, &err),
+            openplx::cli::kExitInputError);
+  EXPECT_NE(err.find(urdf.string() + ":6:3: error: MuJoCo rejects the emitted MJCF: Error: mass and inertia "
+                                     "of moving bodies must be larger than mjMINVAL"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(err.find(".urdf.openplx:"), std::string::npos) << err;
 }
 
 }  // namespace

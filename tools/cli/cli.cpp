@@ -88,6 +88,16 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   fe::SourceRange at_root{evaluation.document->doc.file, source.content_begin(), source.content_begin()};
   if (view.root >= 0 && view.nodes[static_cast<size_t>(view.root)].where.file != fe::kNoFile)
     at_root = view.nodes[static_cast<size_t>(view.root)].where;
+  // A URDF given directly: the root is declared in a generated one-line document, so what concerns the whole
+  // robot goes to the URDF's <robot>, where the imported model's declaration came from.
+  if (evaluation.program->urdf_given_directly() && evaluation.root != fe::kNoObject) {
+    const fe::SourceManager& sources = evaluation.program->sources();
+    for (const fe::ModelInfo* m : evaluation.evaluator->graph().at(evaluation.root).type->linearization()) {
+      if (!m->decl || sources.user_range(m->decl->range).file == m->decl->range.file) continue;
+      at_root = m->decl->range;
+      break;
+    }
+  }
   auto at = [&](const fe::SourceRange& where) { return where.file != fe::kNoFile ? where : at_root; };
   std::string error;
   if (!write_file_atomically(file.string(), xml, error)) {
@@ -103,12 +113,13 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   std::error_code ec;
   fs::remove(file, ec);
   if (!result.loaded) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_root,
+    sink.report(fe::DiagCode::MjcfCheckFailed, at(result.load_error_where),
                 "MuJoCo rejects the emitted MJCF: " + result.load_error);
     return;
   }
-  for (const std::string& problem : result.problems) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_root, "--check: " + problem);
+  for (size_t k = 0; k < result.problems.size(); ++k) {
+    const fe::SourceRange where = k < result.problem_where.size() ? result.problem_where[k] : at_root;
+    sink.report(fe::DiagCode::MjcfCheckFailed, at(where), "--check: " + result.problems[k]);
   }
   for (const mjcf::LocatedProblem& p : result.mujoco_warnings)
     sink.report(fe::DiagCode::MuJoCoWarning, at(p.where), p.message);
