@@ -545,6 +545,20 @@ Symbol Program::host_declared(Namespace* ns, std::string_view name, const Bundle
   return it == ns->symbols.end() ? Symbol{} : it->second;
 }
 
+// The 0.20.2 release writes `Traits.RefractiveIndex` in Physics/Optics/Surfaces/Traits for the model of
+// Physics/Optics/Traits: the first `Traits` found from there (the file's own folder) lacks it, so the name is
+// the first enclosing folder's whose `Traits` holds the whole rest. Quiet: the caller reports a failure.
+Symbol Program::lookup_in_enclosing(DocumentInfo* doc, const QualifiedName& name, Namespace* tried) {
+  for (Namespace* outer = doc->ns ? doc->ns->parent : nullptr; outer; outer = outer->parent) {
+    Symbol s = lookup_in(outer, name.parts[0].text);
+    if (!s.ns || s.ns == tried) continue;
+    for (size_t i = 1; s && i < name.parts.size(); ++i)
+      s = s.ns ? lookup_in(s.ns, name.parts[i].text) : Symbol{};
+    if (s) return s;
+  }
+  return {};
+}
+
 Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, bool report) {
   // `import $"robot.urdf" as robots.arm` names the imported model with a dotted alias.
   if (name.parts.size() > 1 && !doc->import_models.empty()) {
@@ -552,6 +566,7 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
       return Symbol{it->second};
   }
   Symbol s = lookup(doc, name.parts[0].text, name.parts[0].range, report);
+  Namespace* const first = s.ns;
   for (size_t i = 1; s && i < name.parts.size(); ++i) {
     if (!s.ns) {
       if (report) {
@@ -563,6 +578,9 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
     }
     Namespace* ns = s.ns;
     s = lookup_in(ns, name.parts[i].text, report ? &name.range : nullptr);
+    if (!s) {
+      if (Symbol found = lookup_in_enclosing(doc, name, first)) return found;
+    }
     if (!s && report) {
       load_all(ns);
       std::vector<std::string> candidates;

@@ -222,6 +222,9 @@ class Program {
   // `name` in `ns` when `release`, a user's bundle, leaves it to its host (natives/host_declarations.h):
   // declared in `ns` on its first lookup.
   Symbol host_declared(Namespace* ns, std::string_view name, const BundleConfig* release);
+  // `name` (two parts or more) from the folders enclosing `doc`'s, innermost first, skipping the namespace
+  // its first part already named (`tried`); quiet.
+  Symbol lookup_in_enclosing(DocumentInfo* doc, const QualifiedName& name, Namespace* tried);
   Namespace* bundle_root(std::string_view name);
 
   SourceManager& sources_;

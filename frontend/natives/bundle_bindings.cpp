@@ -44,9 +44,25 @@ Value is_default_material(NativeCall& c, Args a) {
   return Value::of_bool(!density || !density->explicit_value);
 }
 
+// The 0.20 releases' gyroscope, accelerometer and magnetometer outputs (our bundles' IMUOutput since): one
+// record of the fields listed, each a Sensors.Signals.TriaxialOutputField axis read as a double.
+Value triaxial_marshalling(NativeCall& c, Args a) {
+  int bytes = 0;
+  for (const Value& field : a[0].array()) {
+    if (field.int_value < 1 || field.int_value > 3)
+      return c.fail("unknown triaxial output field " + std::to_string(field.int_value));
+    bytes += 8;  // X_F64, Y_F64, Z_F64
+  }
+  return c.make_with("Physics.Signals.Marshalling", {{"is_dynamic", Value::of_bool(false)},
+                                                     {"size", Value::of_int(bytes)},
+                                                     {"array_type", Value::of_int(0)}});
+}
+
 }  // namespace
 
 void register_bundle_natives(NativeRegistry& r) {
+  for (const char* sensor : {"Gyroscope", "Accelerometer", "Magnetometer"})
+    r.add(std::string("Sensors.Signals.") + sensor + "Output.marshalling_from_fields", &triaxial_marshalling);
   r.add("Physics3D.Bodies.Inertia.symmetric_tensor", [](NativeCall& c, Args a) {
     auto d = c.fields(a[0], {"x", "y", "z"});
     const double e01 = a[1].as_real(), e02 = a[2].as_real(), e12 = a[3].as_real();
