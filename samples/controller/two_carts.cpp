@@ -1,6 +1,6 @@
-// Loads samples/merged_scene.xml (two prefixed copies of the cart-pole, see its header) with MuJoCo's own
-// mj_loadXML and drives each copy by OpenPLX signal names through its own SignalBridge: the left cart is
-// pushed forward, the right one back.
+// Loads a scene of two prefixed copies of the cart-pole (two_carts_scene.xml, placed on two rails, or
+// samples/merged_scene.xml; see their headers) with MuJoCo's own mj_loadXML and drives each copy by OpenPLX
+// signal names through its own SignalBridge: the left cart is pushed forward, the right one back.
 //   two_carts SCENE.xml LEFT.signals.json RIGHT.signals.json
 #include <mujoco/mujoco.h>
 

@@ -169,6 +169,7 @@ TEST_F(Placement, TwoCopiesCollideWithEachOtherAndTheFloor) {
   d->ctrl[mj_name2id(m, mjOBJ_ACTUATOR, "right/drive")] = 5;
   int between_copies = 0, with_floor = 0;
   double deepest = 0;
+  std::string deepest_pair;
   while (d->time < 3) {
     mj_step(m, d);
     for (int c = 0; c < d->ncon; ++c) {
@@ -176,18 +177,29 @@ TEST_F(Placement, TwoCopiesCollideWithEachOtherAndTheFloor) {
       const int a = copy_of(k.geom1), b = copy_of(k.geom2);
       if (a && b && a != b) ++between_copies;
       if ((k.geom1 == floor && b) || (k.geom2 == floor && a)) ++with_floor;
-      deepest = std::min(deepest, k.dist);
+      if (k.dist < deepest) {
+        deepest = k.dist;
+        deepest_pair = std::string(mj_id2name(m, mjOBJ_GEOM, k.geom1) ?: "?") + " and " +
+                       (mj_id2name(m, mjOBJ_GEOM, k.geom2) ?: "?") + " at t = " + std::to_string(d->time);
+      }
     }
   }
   EXPECT_GT(between_copies, 0);
   EXPECT_GT(with_floor, 0);
-  EXPECT_GT(deepest, -0.01) << "contacts sank deeper than 1 cm";
+  // A pole's tip lands at about 5 m/s, 1 cm a step: MuJoCo's soft contacts (default solref) give way some
+  // centimetres at the impact, then push it back out.
+  EXPECT_GT(deepest, -0.05) << "contacts sank deeper than 5 cm: " << deepest_pair;
+  double deepest_at_rest = 0;
+  for (int c = 0; c < d->ncon; ++c) deepest_at_rest = std::min(deepest_at_rest, d->contact[c].dist);
+  EXPECT_GT(deepest_at_rest, -0.002) << "at rest, something stays more than 2 mm inside another";
   // The carts met and stopped there: centres at least a cart's length apart (0.3 m) less the contacts' give.
   const double gap = (vec(d->xpos + 3 * right_cart) - vec(d->xpos + 3 * left_cart)).x();
   EXPECT_GT(gap, 0.3 - 0.01);
   EXPECT_LT(gap, 0.8);  // they moved towards each other
-  std::printf("contacts between copies %d, with the floor %d, deepest %.4g m, carts %.4f m apart\n",
-              between_copies, with_floor, deepest, gap);
+  std::printf(
+      "contacts between copies %d, with the floor %d, deepest %.4g m (%s), at rest %.4g m, carts %.4f m "
+      "apart\n",
+      between_copies, with_floor, deepest, deepest_pair.c_str(), deepest_at_rest, gap);
   mj_deleteData(d);
   mj_deleteModel(m);
 }

@@ -1,0 +1,33 @@
+#!/bin/sh
+# The installed CMake package used by an outside project (samples/controller): find_package(openplx2mjcf),
+# the runtime library, and openplx2mjcf_add_model converting cart_pole at build time. A build with nothing
+# changed converts nothing; touching the model, or a bundle file the conversion read (the converter's
+# --depfile), converts again.
+#   installed_package_test.sh BUILD_DIR SOURCE_DIR
+set -e
+build=$1
+source=$2
+t=$(mktemp -d)
+trap 'rm -rf "$t"' EXIT
+cmake --install "$build" --prefix "$t/prefix" >/dev/null
+mkdir "$t/models"
+cp "$source/samples/cart_pole.openplx" "$t/models/"
+# Built with make itself: the project is the test's own, and make's output is what is checked.
+cmake -S "$source/samples/controller" -B "$t/build" -G "Unix Makefiles" -DCMAKE_PREFIX_PATH="$t/prefix" \
+  -DCMAKE_BUILD_TYPE=Release -DOPENPLX_SAMPLE_MODELS="$t/models" >/dev/null
+make -C "$t/build" -j2 >"$t/first.log"
+grep -q "Converting .*cart_pole.openplx to left_cart_pole.xml" "$t/first.log"
+"$t/build/arm_controller" "$source/samples/two_joint_arm.openplx"
+"$t/build/machine_driver" "$source/samples/drivetrain_machine.openplx"
+(cd "$t/build" && ./two_carts two_carts_scene.xml left_cart_pole.signals.json right_cart_pole.signals.json)
+
+# A later mtime than anything built, whatever the file system's timestamp resolution.
+later() { touch -d "@$(($(date +%s) + $1))" "$2"; }
+rebuilt() { make -C "$t/build" -j2 >"$t/again.log" && grep -c "Converting" "$t/again.log" || true; }
+echo "nothing changed: $(rebuilt) conversions"
+later 5 "$t/models/cart_pole.openplx"
+echo "model touched: $(rebuilt) conversions"
+bundle_file="$t/prefix/share/openplx2mjcf/bundles/Physics3D/Bodies/RigidBody.openplx"
+grep -q "$bundle_file" "$t/build/left_cart_pole.xml.d"
+later 10 "$bundle_file"
+echo "bundle file touched: $(rebuilt) conversions"
