@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <sstream>
+#include <utility>
 
 namespace openplx::mjcf {
 
@@ -23,15 +24,16 @@ enum Choice {
   kChoices
 };
 
-constexpr std::array<const char*, kChoices> kPhrases = {
-    "equality constraints (solref 2h, softness bounded for h)",
-    "hard limits (solreflimit 2h)",
-    "friction-row drives (solreffriction 2h)",
-    "velocity-motor references (kv = inertia / h)",
-    "actuator damping and gains capped for h",
-    "joint and tendon springs judged stable at h",
-    "spring rows the runtime builds for h",
-};
+// What each is, and how it follows h (the count goes between them).
+constexpr std::array<std::pair<const char*, const char*>, kChoices> kPhrases = {{
+    {"equality constraints", "solref 2h, softness bounded for h"},
+    {"hard limits", "solreflimit 2h"},
+    {"friction-row drives", "solreffriction 2h"},
+    {"velocity-motor references", "kv = inertia / h"},
+    {"actuator damping and gains", "capped for h"},
+    {"joint and tendon springs", "judged stable at h"},
+    {"spring rows", "the runtime builds them for h"},
+}};
 
 // A <general> actuator's velocity term (biasprm[2]): the damping of springs and dampers kept explicit while
 // below the inertia per step, a distance motor's gain. A velocity motor's bias actuator has none.
@@ -71,7 +73,9 @@ std::vector<std::string> timestep_choices(const Element& document, const std::ve
       laws.begin(), laws.end(), [](const RuntimeLaw& l) { return l.kind == RuntimeLaw::Kind::Spring; }));
   std::vector<std::string> choices;
   for (size_t k = 0; k < kChoices; ++k) {
-    if (counts[k] > 0) choices.push_back(std::to_string(counts[k]) + " " + kPhrases[k]);
+    if (counts[k] > 0)
+      choices.push_back(std::string(kPhrases[k].first) + " (" + std::to_string(counts[k]) + ", " +
+                        kPhrases[k].second + ")");
   }
   return choices;
 }

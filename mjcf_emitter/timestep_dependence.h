@@ -11,7 +11,8 @@
 
 namespace openplx::mjcf {
 
-// One short phrase per kind of element that carries a time-step choice, with how many, in a fixed order;
+// One short phrase per kind of element that carries a time-step choice, with how many and how it follows the
+// time step h ("hard limits (2, solreflimit 2h)"), in a fixed order;
 // empty when the model has none (its MJCF means the same at any time step MuJoCo integrates stably).
 std::vector<std::string> timestep_choices(const Element& document, const std::vector<RuntimeLaw>& laws);
 
