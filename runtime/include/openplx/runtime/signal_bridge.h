@@ -34,8 +34,11 @@ class SignalBridge {
   // manifest cannot be read, is inconsistent in itself (a binding or law the runtime could not use), was
   // written for another model (its fingerprint, over the model's own bodies and joints by name without
   // the prefix, differs from `model`'s: see mjcf_emitter/model_fingerprint.h; manifests without one skip
-  // this), names any element `model` lacks or has of another kind, or when a bridge for the same prefix is
-  // already attached to `data` (two would disagree; the first must be destroyed before another attaches).
+  // this), names any element `model` lacks or has of another kind, has a newer format_version than this
+  // runtime reads, or when a bridge for the same prefix is already attached to `data` (two would disagree; the
+  // first must be destroyed before another attaches). A `model` stepping at another time step than the
+  // manifest's is a warning in warnings() when the model's stability choices follow it (the manifest's
+  // timestep_dependent). The manifest's format: docs/signals.schema.json.
   // Also installs MuJoCo's message handlers when none are set (runtime/README.md "MuJoCo's messages").
   static SignalBridge attach(const std::string& manifest, mjModel* model, mjData* data,
                              const std::string& prefix = "");
