@@ -138,9 +138,12 @@ void Lowering::emit_inertial(Element& body, int node) {
   const bool welded = edge >= 0 && view_.mates[edge].type == sn::MateType::Lock;
   if (!n.body.dynamic || (massless && welded)) {
     // A static body needs no mass: MuJoCo sums its collision geoms (visual ones have density 0), as its
-    // URDF importer does for a root link; a massless link stays massless.
+    // URDF importer does for a root link. A massless link stays massless and keeps the tensor it was given,
+    // as MuJoCo's importer keeps it (a mass-0 foot welded to a moving leg still adds its inertia there).
     if (massless)
-      body.add("inertial").set("pos", n.body.cm.position).set("mass", 0.0).set("diaginertia", "0 0 0");
+      write_inertial(body, 0.0, n.body.cm.position, n.body.cm.rotation, n.body.inertia,
+                     n.body.tensor_where.file != fe::kNoFile ? n.body.tensor_where : n.where,
+                     "`" + (n.path.empty() ? "" : n.path + ".") + "inertia.tensor`");
     return;
   }
   const bool tensor_given = !n.body.inertia.isZero();
