@@ -322,7 +322,7 @@ std::string usage() {
          "                    [--no-keyframe] [--timestep S] [--mujoco 2.2|3] [--no-default-bundles]\n"
          "                    [--strict] [--check] [--check-time T] [--exclude-initial-overlaps]\n"
          "                    [--urdf-exact-mesh-mass] [--depfile DEP] [--dump=tokens|ast|values|snap]\n"
-         "                    [--help] [--version] [--] \n"
+         "                    [--help] [--version] [--]\n"
          "\n"
          "Reads an OpenPLX model (or a URDF), evaluates and assembles it, and with -o writes MuJoCo MJCF\n"
          "to OUT with the signal manifest OUT.signals.json beside it. Without -o nothing is written: the\n"
@@ -366,9 +366,10 @@ std::string usage() {
          "  --version      show the version\n"
          "  --             what follows is the input file, even if it starts with '-'\n"
          "\n"
-         "An included file brings its <compiler> and <option> (time step, gravity, integrator, solver\n"
-         "settings) into the scene that includes it, overriding the scene's own where they come later:\n"
-         "emit with the scene's --timestep, and include the converted files before the scene's <option>.\n"
+         "An <include>d file brings its <option> (time step, gravity, integrator, solver settings) into\n"
+         "the scene, overriding the scene's own <option> given before the include (one given after wins):\n"
+         "emit with the scene's --timestep. Its <compiler angle=\"radian\"> holds for the whole scene\n"
+         "wherever it stands: the scene's own euler/axisangle angles are read in radians too.\n"
          "\n"
          "Exit status: 0 success, 1 errors in the input, 2 usage errors.\n";
 }
