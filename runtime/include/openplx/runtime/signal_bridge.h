@@ -35,8 +35,8 @@ class SignalBridge {
   // written for another model (its fingerprint, over the model's own bodies and joints by name without
   // the prefix, differs from `model`'s: see mjcf_emitter/model_fingerprint.h; manifests without one skip
   // this), names any element `model` lacks or has of another kind, has a newer format_version than this
-  // runtime reads, or when a bridge for the same prefix is already attached to `data` (two would disagree; the
-  // first must be destroyed before another attaches). A `model` stepping at another time step than the
+  // runtime reads, or when a bridge for the same prefix is already attached to `data` (two would disagree;
+  // the first must be destroyed before another attaches). A `model` stepping at another time step than the
   // manifest's is a warning in warnings() when the model's stability choices follow it (the manifest's
   // timestep_dependent). The manifest's format: docs/signals.schema.json.
   // Also installs MuJoCo's message handlers when none are set (runtime/README.md "MuJoCo's messages").
