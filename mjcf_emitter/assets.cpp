@@ -204,6 +204,12 @@ std::string Lowering::converted_mesh_asset(const sn::Geometry& g) {
   if (first) {
     auto mesh = std::make_shared<TriangleMesh>();
     read->second.problem = read_mesh_with_assimp(g.file, *mesh);
+    // COLLADA's up axis onto MuJoCo's +Z, as the format defines it; RViz and Gazebo take the coordinates as
+    // written instead, so a file whose up is not Z shows differently there: said, with the way to match them.
+    read->second.up_axis = read->second.problem.empty() ? collada_up_axis(g.file) : "";
+    if (read->second.up_axis == "Z_UP") read->second.up_axis.clear();
+    if (!read->second.up_axis.empty() && !options_.collada_ignore_up_axis)
+      turn_up_axis_onto_z(*mesh, read->second.up_axis);
     if (read->second.problem.empty()) read->second.problem = converted_mesh_problem(*mesh);
     if (read->second.problem.empty()) read->second.mesh = std::move(mesh);
   }
@@ -212,6 +218,15 @@ std::string Lowering::converted_mesh_asset(const sn::Geometry& g) {
         g, fe::DiagCode::MjcfBadAsset,
         "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + read->second.problem);
     return {};
+  }
+  if (const std::string& up = read->second.up_axis; !up.empty()) {
+    warn(g.where, "mesh file " + g.file + " of `" + g.path + ".path` declares <up_axis>" + up +
+                      "</up_axis>: " +
+                      (options_.collada_ignore_up_axis
+                           ? "its coordinates were taken as written (--collada-ignore-up-axis), as RViz and "
+                             "Gazebo show it, not turned as COLLADA defines"
+                           : "it was turned so that its up axis is +Z, as COLLADA defines; RViz and Gazebo "
+                             "take the coordinates as written (--collada-ignore-up-axis does so too)"));
   }
   const std::string key =
       g.file + '\n' + number(g.scale.x()) + ' ' + number(g.scale.y()) + ' ' + number(g.scale.z());

@@ -42,6 +42,8 @@ struct EmitOptions {
   // --urdf-exact-mesh-mass: a URDF link without <inertial> takes its mesh volumes exactly, as OpenPLX bodies
   // do, instead of as MuJoCo 2.2.2's URDF importer computes them (its legacy formula; README "URDF").
   bool urdf_exact_mesh_mass = false;
+  // COLLADA coordinates taken as written, as RViz and Gazebo show them, instead of turning <up_axis> onto +Z.
+  bool collada_ignore_up_axis = false;
 };
 
 // A <mesh> asset read from a file MuJoCo cannot read (mesh_conversion.h): `document` holds it inline.

@@ -282,6 +282,7 @@ class Lowering {
   struct ReadMesh {
     std::shared_ptr<const TriangleMesh> mesh;
     std::string problem;
+    std::string up_axis;  // a COLLADA file's <up_axis> other than Z_UP
   };
   std::map<std::string, ReadMesh> read_meshes_;
   std::map<std::string, std::string> converted_assets_;  // file and scale -> its <mesh> asset

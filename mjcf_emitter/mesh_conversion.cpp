@@ -132,6 +132,36 @@ std::string obj_bytes(const TriangleMesh& mesh) {
 
 }  // namespace
 
+std::string collada_up_axis(const std::string& path) {
+  if (lower_extension(path) != ".dae") return {};
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 16, '\0');  // <asset> comes first in a COLLADA document
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  const size_t open = head.find("<up_axis>");
+  if (open == std::string::npos) return {};
+  const size_t close = head.find("</up_axis>", open);
+  if (close == std::string::npos) return {};
+  std::string axis = head.substr(open + 9, close - open - 9);
+  axis.erase(0, axis.find_first_not_of(" \t\r\n"));
+  axis.erase(axis.find_last_not_of(" \t\r\n") + 1);
+  return axis == "X_UP" || axis == "Y_UP" || axis == "Z_UP" ? axis : "";
+}
+
+void turn_up_axis_onto_z(TriangleMesh& mesh, const std::string& up) {
+  for (size_t v = 0; v + 2 < mesh.vertices.size(); v += 3) {
+    const float x = mesh.vertices[v], y = mesh.vertices[v + 1], z = mesh.vertices[v + 2];
+    if (up == "Y_UP") {  // right +x stays, up +y -> +z, toward the viewer +z -> -y
+      mesh.vertices[v + 1] = -z;
+      mesh.vertices[v + 2] = y;
+    } else if (up == "X_UP") {  // right -y -> +x, up +x -> +z, toward the viewer +z -> -y
+      mesh.vertices[v] = -y;
+      mesh.vertices[v + 1] = -z;
+      mesh.vertices[v + 2] = x;
+    }
+  }
+}
+
 bool converted_with_assimp(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == ".obj" || ext == ".msh") return false;

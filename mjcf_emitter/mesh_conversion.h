@@ -6,9 +6,9 @@
 //
 // How a file is read follows how ROS tools show it (RViz 2's assimp loader, Gazebo classic's COLLADA loader):
 // every node transform is baked into the vertices (all the file's meshes merged into one), points and lines
-// are dropped, polygons triangulated; COLLADA's <unit meter> scales the file to metres; COLLADA's <up_axis>
-// is ignored (the coordinates are taken as written, Z up as in a URDF: assimp would turn a Z_UP file onto Y);
-// glTF's Y up is turned onto Z, as RViz does.
+// are dropped, polygons triangulated; COLLADA's <unit meter> scales the file to metres; glTF's Y up is turned
+// onto Z, as RViz does. COLLADA's <up_axis> is read by the emitter (collada_up_axis below), not by assimp
+// (which would turn a Z_UP file onto its own Y up).
 #pragma once
 
 #include <cstdint>
@@ -42,6 +42,15 @@ bool converted_with_assimp(const std::string& path);
 // registered here first (a package that installs it elsewhere).
 std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh);
 void add_mesh_module_candidate(const std::string& path);
+
+// The <up_axis> a COLLADA file declares ("X_UP", "Y_UP" or "Z_UP"), or "" when it is none or declares none
+// (COLLADA's default is Y_UP, but files without one are written by tools that mean Z as a URDF does).
+std::string collada_up_axis(const std::string& path);
+
+// Turns a mesh so that the up axis `up` ("X_UP" or "Y_UP") becomes +Z, as COLLADA defines its axes
+// (Y_UP: x right, y up, z toward the viewer; X_UP: -y right, x up, z toward the viewer; Z_UP: x right,
+// z up, -y toward the viewer). A right-handed turn: volumes and face orientation are kept.
+void turn_up_axis_onto_z(TriangleMesh& mesh, const std::string& up);
 
 // The inline MJCF attributes <mesh vertex="..." face="...">: shortest text that reads back to the same
 // floats.

@@ -234,26 +234,51 @@ struct Model {
 };
 
 // A 100 x 200 x 300 box in millimetres at (10, 20, 30) mm: 0.1 x 0.2 x 0.3 m, 6 kg of water, its corner at
-// (0.01, 0.02, 0.03) m. The up axis does not turn it: RViz and Gazebo show COLLADA coordinates as written.
-TEST(MeshConversion, ColladaUnitIsHonouredAndUpAxisKeepsCoordinatesAsWritten) {
+// (0.01, 0.02, 0.03) m as written. <up_axis> is turned onto +Z as COLLADA defines it (Y_UP: (x, y, z) ->
+// (x, -z, y); X_UP: (x, y, z) -> (-y, -z, x)), with a warning at the mesh, since RViz and Gazebo show the
+// coordinates as written; --collada-ignore-up-axis takes them as written, still warned.
+TEST(MeshConversion, ColladaUnitAndUpAxisAreHonoured) {
   const ScratchDir dir;
-  for (const char* up : {"Z_UP", "Y_UP", "X_UP"}) {
-    SCOPED_TRACE(up);
-    write(dir / "box.dae", collada("0.001", up, {100, 200, 300}, {10, 20, 30}));
+  using V = Eigen::Vector3d;
+  struct Case {
+    const char* up;
+    bool ignore;
+    V lo, hi;
+  };
+  const V written_lo(0.01, 0.02, 0.03), written_hi(0.11, 0.22, 0.33);
+  for (const Case& c :
+       {Case{"Z_UP", false, written_lo, written_hi},
+        Case{"Y_UP", false, V(0.01, -0.33, 0.02), V(0.11, -0.03, 0.22)},
+        Case{"X_UP", false, V(-0.22, -0.33, 0.01), V(-0.02, -0.03, 0.11)},
+        Case{"Y_UP", true, written_lo, written_hi}, Case{"X_UP", true, written_lo, written_hi}}) {
+    SCOPED_TRACE(std::string(c.up) + (c.ignore ? " ignored" : ""));
+    write(dir / "box.dae", collada("0.001", c.up, {100, 200, 300}, {10, 20, 30}));
     write(dir / "scene.openplx", scene("box.dae"));
-    const Conversion r =
-        cli({(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string(), "--check"});
+    std::vector<std::string> args{(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string(),
+                                  "--check"};
+    if (c.ignore) args.push_back("--collada-ignore-up-axis");
+    const Conversion r = cli(args);
     ASSERT_EQ(r.status, 0) << r.errors;
-    EXPECT_EQ(r.errors, "");
+    if (std::string(c.up) == "Z_UP") {
+      EXPECT_EQ(r.errors, "");
+    } else {
+      EXPECT_NE(r.errors.find(std::string("warning: mesh file ") + (dir / "box.dae").string()),
+                std::string::npos)
+          << r.errors;
+      EXPECT_NE(r.errors.find(std::string("declares <up_axis>") + c.up), std::string::npos) << r.errors;
+      EXPECT_NE(r.errors.find(c.ignore ? "taken as written" : "turned so that its up axis is +Z"),
+                std::string::npos)
+          << r.errors;
+    }
     EXPECT_TRUE(fs::is_regular_file(dir / "scene.meshes" / "box.stl"));
     EXPECT_NE(read(dir / "scene.xml").find("file=\"scene.meshes/box.stl\""), std::string::npos);
     const Model model(dir / "scene.xml");
     if (!model.m) continue;
-    EXPECT_NEAR(model.mass("body"), 0.1 * 0.2 * 0.3 * 1000, 1e-4);
+    EXPECT_NEAR(model.mass("body"), 0.1 * 0.2 * 0.3 * 1000, 1e-4);  // a proper turn keeps the volume
     for (const char* geom : {"body.shape", "body.look"}) {
       const auto [lo, hi] = model.extents(geom);
-      EXPECT_LT((lo - Eigen::Vector3d(0.01, 0.02, 0.03)).norm(), 1e-6) << geom << " " << lo.transpose();
-      EXPECT_LT((hi - Eigen::Vector3d(0.11, 0.22, 0.33)).norm(), 1e-6) << geom << " " << hi.transpose();
+      EXPECT_LT((lo - c.lo).norm(), 1e-6) << geom << " " << lo.transpose();
+      EXPECT_LT((hi - c.hi).norm(), 1e-6) << geom << " " << hi.transpose();
     }
   }
 }

@@ -270,6 +270,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   emit_options.exclude_initial_overlaps = options.exclude_initial_overlaps;
   emit_options.urdf_exact_mesh_mass = options.urdf_exact_mesh_mass;
+  emit_options.collada_ignore_up_axis = options.collada_ignore_up_axis;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
@@ -321,7 +322,8 @@ std::string usage() {
   return "usage: openplx2mjcf FILE [-o OUT|-] [--model NAME] [-B DIR]... [--prefix P] [--pose POSE]\n"
          "                    [--no-keyframe] [--timestep S] [--mujoco 2.2|3] [--no-default-bundles]\n"
          "                    [--strict] [--check] [--check-time T] [--exclude-initial-overlaps]\n"
-         "                    [--urdf-exact-mesh-mass] [--depfile DEP] [--dump=tokens|ast|values|snap]\n"
+         "                    [--urdf-exact-mesh-mass] [--collada-ignore-up-axis] [--depfile DEP]\n"
+         "                    [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version] [--]\n"
          "\n"
          "Reads an OpenPLX model (or a URDF), evaluates and assembles it, and with -o writes MuJoCo MJCF\n"
@@ -357,6 +359,8 @@ std::string usage() {
          "                 at the start (<contact><exclude>), for parts meant to overlap\n"
          "  --urdf-exact-mesh-mass  a URDF link without <inertial> takes the exact volume of its collision\n"
          "                 meshes (default: MuJoCo's URDF importer's mass, its legacy mesh volumes)\n"
+         "  --collada-ignore-up-axis  take COLLADA mesh coordinates as written, as RViz and Gazebo show\n"
+         "                 them (default: a file's <up_axis> is turned onto +Z, as COLLADA defines)\n"
          "  --depfile DEP  with -o OUT: write DEP, a Make-style dependency file naming every file read\n"
          "                 (the model, OpenPLX files and bundles, URDFs, meshes, textures), for build\n"
          "                 systems (CMake's openplx2mjcf_add_model uses it)\n"
@@ -415,6 +419,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (arg == "--check") {
       options.check = true;
+      continue;
+    }
+    if (arg == "--collada-ignore-up-axis") {
+      options.collada_ignore_up_axis = true;
       continue;
     }
     if (arg == "--urdf-exact-mesh-mass") {
