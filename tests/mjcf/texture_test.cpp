@@ -74,7 +74,7 @@ TEST(Textures, ImportedPngIsAMaterialTextureAtItsSize) {
   ASSERT_EQ(m->ntex, 1);
   EXPECT_EQ(m->tex_width[0], 4);
   EXPECT_EQ(m->tex_height[0], 2);
-  ASSERT_EQ(m->nmat, 1);
+  ASSERT_EQ(m->nmat, 2);  // the model's, then the collision geometry's default (viewer_defaults.h)
   EXPECT_EQ(m->mat_texid[0], 0);
   EXPECT_EQ(m->mat_texrepeat[0], 2.0f);
   EXPECT_EQ(m->mat_texrepeat[1], 3.0f);
@@ -113,7 +113,7 @@ TEST(Textures, WhatMuJoCoLacksIsWarnedAtTheUsersLine) {
   EXPECT_EQ(m->ntex, 1);  // the base colour map only
   // The dropped metallic map leaves the reflectance at MuJoCo's default: the Metallic trait's factor 1
   // (the user wrote none) only scales the map, and alone would be a mirror.
-  ASSERT_EQ(m->nmat, 1);
+  ASSERT_EQ(m->nmat, 2);  // the model's, then the collision geometry's default (viewer_defaults.h)
   EXPECT_EQ(m->mat_reflectance[0], 0.0f);
   mj_deleteModel(m);
 }
