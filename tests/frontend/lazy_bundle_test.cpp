@@ -61,7 +61,8 @@ TEST(BundleIndex, ImportsAndOperatorsAreParsedWithTheNamespace) {
 // does not end it, as the lexer reads it.
 TEST(BundleIndex, StepsOverMultilineStrings) {
   const fe::FileDeclarations d = scan(
-      "A:\n    .doc: \"\"\"\nB: not a declaration\n  \\\"\"\" still text\n\"\"\"\n        v is Int: 1\nC is A\n");
+      "A:\n    .doc: \"\"\"\nB: not a declaration\n  \\\"\"\" still text\n\"\"\"\n        v is Int: 1\nC is "
+      "A\n");
   EXPECT_TRUE(d.complete);
   EXPECT_TRUE(d.lazy);
   EXPECT_EQ(d.names, (Names{"A", "C"}));
@@ -69,7 +70,7 @@ TEST(BundleIndex, StepsOverMultilineStrings) {
 
 TEST(BundleIndex, IsUnsureOfAnythingElse) {
   const char* unsure[] = {
-      "A:\n    doc is String: \"\"\"\nB:\n",                  // an unterminated multi-line string
+      "A:\n    doc is String: \"\"\"\nB:\n",              // an unterminated multi-line string
       "A:\n\tv is Int: 1\n",                              // tab indentation
       "A:\n    v is Real[]: [1,\nB:\n    w is Int: 2\n",  // an unclosed bracket
       "A:\n    v is Int: 1)\n",                           // an unmatched bracket
