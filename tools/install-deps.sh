@@ -19,6 +19,8 @@ done
 if [[ $tests -eq 1 ]]; then
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
+  # A virtual X server and screen grabs for the samples' screenshots in mujoco-simulate (viewer_screenshots).
+  packages+=(xvfb x11-apps imagemagick xdotool)
 fi
 
 missing=()
