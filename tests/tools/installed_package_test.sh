@@ -1,6 +1,7 @@
 #!/bin/sh
 # The installed CMake package used by an outside project (samples/controller): find_package(openplx2mjcf),
-# the runtime library, and openplx2mjcf_add_model converting cart_pole at build time. A build with nothing
+# the runtime library, openplx2mjcf_add_model converting cart_pole at build time, and two_carts balancing two
+# placed copies in one scene (exits non-zero when a pole falls or a cart runs off). A build with nothing
 # changed converts nothing; touching the model, or a bundle file the conversion read (the converter's
 # --depfile), converts again.
 #   installed_package_test.sh BUILD_DIR SOURCE_DIR
