@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   mjData* d = mj_makeData(m);
   // The left pole starts where the model puts it (the hinge's initial_angle, 0.1 rad); the scene's own
   // initial state tilts the right one the other way. MuJoCo names are the prefix + the OpenPLX name.
-  d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "right/hinge")]] = -0.05;
+  if (int hinge = mj_name2id(m, mjOBJ_JOINT, "right/hinge"); hinge >= 0)
+    d->qpos[m->jnt_qposadr[hinge]] = -0.05;
   mj_forward(m, d);
   int status = 0;
   try {
