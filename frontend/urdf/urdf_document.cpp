@@ -39,7 +39,7 @@ std::string xml_error_text(const tinyxml2::XMLDocument& doc) {
 }  // namespace
 
 UrdfDocument::UrdfDocument(std::string text, std::string path)
-    : text_(std::move(text)), path_(std::move(path)) {
+    : path_(std::move(path)), text_(std::move(text)) {
   line_starts_.push_back(0);
   for (uint32_t i = 0; i < text_.size(); ++i) {
     if (text_[i] == '\n') line_starts_.push_back(i + 1);
