@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "openplx/runtime/simulation.h"
+#include "tests/support/scoped_env.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/tetrahedron_stl.h"
 #include "tools/cli/cli.h"
@@ -35,21 +36,7 @@ std::string read(const fs::path& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// Sets an environment variable for one test's lifetime (each test runs in its own process under ctest).
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    ::setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() { old_ ? ::setenv(name_, old_->c_str(), 1) : ::unsetenv(name_); }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
+using openplx::testing::ScopedEnv;
 
 // A base and an arm on a hinge. Line 6 holds the joint's <origin> (xyz), line 7 its <limit> (upper).
 std::string hinge_robot(const std::string& xyz, const std::string& upper) {

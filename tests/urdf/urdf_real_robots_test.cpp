@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "openplx/runtime/simulation.h"
+#include "tests/support/scoped_env.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/tetrahedron_stl.h"
 #include "tools/cli/cli.h"
@@ -176,19 +177,7 @@ TEST(UrdfValues, MalformedValuesAreLocatedErrors) {
 
 using openplx::testing::write_tetrahedron;
 
-// Sets an environment variable for one test's lifetime (each test runs in its own process under ctest).
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    ::setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() { old_ ? ::setenv(name_, old_->c_str(), 1) : ::unsetenv(name_); }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
+using openplx::testing::ScopedEnv;
 
 // A robot whose mesh package is not above its file: found as ROS finds it, through ROS_PACKAGE_PATH (a
 // workspace's src folder, packages below it) or AMENT_PREFIX_PATH (<prefix>/share/<package>).
