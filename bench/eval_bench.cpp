@@ -7,8 +7,8 @@
 #include <fstream>
 
 #include "bench/model_generator.h"
-#include "frontend/bundles.h"
-#include "frontend/evaluator.h"
+#include "frontend/bundles/bundles.h"
+#include "frontend/evaluation/evaluator.h"
 #include "frontend/pipeline.h"
 
 namespace fe = openplx::frontend;

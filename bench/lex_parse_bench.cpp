@@ -2,8 +2,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/model_generator.h"
-#include "frontend/lexer.h"
-#include "frontend/parser.h"
+#include "frontend/syntax/lexer.h"
+#include "frontend/syntax/parser.h"
 
 namespace fe = openplx::frontend;
 

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <unordered_set>
 
-#include "frontend/bundles.h"
-#include "frontend/import_plugins.h"
-#include "frontend/large_stack.h"
+#include "frontend/bundles/bundles.h"
+#include "frontend/bundles/import_plugins.h"
+#include "frontend/evaluation/large_stack.h"
 
 namespace openplx::frontend {
 

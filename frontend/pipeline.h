@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/evaluator.h"
-#include "frontend/program.h"
+#include "frontend/evaluation/evaluator.h"
+#include "frontend/semantics/program.h"
 
 namespace openplx::frontend {
 

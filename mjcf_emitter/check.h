@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/source.h"
+#include "frontend/diagnostics/source.h"
 #include "mjcf_emitter/mujoco_library.h"
 #include "snap/snap.h"
 

@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "frontend/diagnostics.h"
+#include "frontend/diagnostics/diagnostics.h"
 #include "mjcf_emitter/mesh_conversion.h"
 #include "mjcf_emitter/signal_binding.h"
 #include "mjcf_emitter/xml.h"

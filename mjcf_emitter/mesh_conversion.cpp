@@ -12,7 +12,7 @@
 #include <fstream>
 #include <mutex>
 
-#include "frontend/bundles.h"
+#include "frontend/bundles/bundles.h"
 #include "mjcf_emitter/mesh_module_abi.h"
 
 namespace openplx::mjcf {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "frontend/diagnostics.h"
+#include "frontend/diagnostics/diagnostics.h"
 #include "frontend/pipeline.h"
 #include "frontend/urdf/urdf_importer.h"
 #include "mjcf_emitter/emitter.h"

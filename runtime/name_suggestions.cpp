@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "frontend/edit_distance.h"
+#include "frontend/semantics/edit_distance.h"
 
 namespace openplx::runtime {
 namespace {

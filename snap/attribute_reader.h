@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "frontend/evaluator.h"
+#include "frontend/evaluation/evaluator.h"
 #include "snap/resolved_system.h"
 
 namespace openplx::snap {

@@ -2,7 +2,7 @@
 // configurations AGX rejects.
 #pragma once
 
-#include "frontend/diagnostics.h"
+#include "frontend/diagnostics/diagnostics.h"
 #include "snap/attribute_reader.h"
 #include "snap/resolved_system.h"
 

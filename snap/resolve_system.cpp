@@ -1,6 +1,6 @@
 #include "snap/resolve_system.h"
 
-#include "frontend/large_stack.h"
+#include "frontend/evaluation/large_stack.h"
 #include "snap/unread_attributes.h"
 
 #include <Eigen/Eigenvalues>

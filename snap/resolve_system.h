@@ -5,8 +5,8 @@
 // are reported at the user's line.
 #pragma once
 
-#include "frontend/diagnostics.h"
-#include "frontend/evaluator.h"
+#include "frontend/diagnostics/diagnostics.h"
+#include "frontend/evaluation/evaluator.h"
 #include "snap/resolved_system.h"
 
 namespace openplx::snap {

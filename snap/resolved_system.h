@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "frontend/natives/math_rotation.h"
-#include "frontend/source.h"
+#include "frontend/diagnostics/source.h"
 
 namespace openplx::snap {
 

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <utility>
 
-#include "frontend/value_format.h"
+#include "frontend/evaluation/value_format.h"
 
 namespace openplx::snap {
 namespace {

@@ -15,7 +15,7 @@
 
 #include <vector>
 
-#include "frontend/diagnostics.h"
+#include "frontend/diagnostics/diagnostics.h"
 #include "snap/resolved_system.h"
 
 namespace openplx::snap {

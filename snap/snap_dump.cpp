@@ -2,7 +2,7 @@
 
 #include <ostream>
 
-#include "frontend/value_format.h"
+#include "frontend/evaluation/value_format.h"
 
 namespace openplx::snap {
 namespace {

@@ -2,8 +2,8 @@
 // file that the resolver never read (Evaluator::track_reads) is a warning at the assignment, naming it.
 #pragma once
 
-#include "frontend/diagnostics.h"
-#include "frontend/evaluator.h"
+#include "frontend/diagnostics/diagnostics.h"
+#include "frontend/evaluation/evaluator.h"
 #include "snap/resolved_system.h"
 
 namespace openplx::snap {

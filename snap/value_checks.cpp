@@ -3,7 +3,7 @@
 // geometry) would be silently wrong.
 #include <cmath>
 
-#include "frontend/value_format.h"
+#include "frontend/evaluation/value_format.h"
 #include "snap/attribute_reader.h"
 #include "snap/read_parameters.h"
 #include "snap/resolve_system.h"

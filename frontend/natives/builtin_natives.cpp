@@ -2,7 +2,7 @@
 
 #include <mutex>
 
-#include "frontend/evaluator.h"
+#include "frontend/evaluation/evaluator.h"
 
 namespace openplx::natives {
 

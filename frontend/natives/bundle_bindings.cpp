@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "frontend/evaluator.h"
+#include "frontend/evaluation/evaluator.h"
 #include "frontend/natives/builtin_natives.h"
 
 namespace openplx::natives {

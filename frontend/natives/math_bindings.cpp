@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "frontend/evaluator.h"
+#include "frontend/evaluation/evaluator.h"
 #include "frontend/natives/builtin_natives.h"
 #include "frontend/natives/math_matrix.h"
 #include "frontend/natives/math_rotation.h"

@@ -6,7 +6,7 @@
 #include <mutex>
 #include <vector>
 
-#include "frontend/bundles.h"
+#include "frontend/bundles/bundles.h"
 #include "frontend/urdf/urdf_module_abi.h"
 
 #ifdef OPENPLX_URDF_LINKED

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <string>
 
-#include "frontend/ast.h"
-#include "frontend/ast_dump.h"
+#include "frontend/syntax/ast.h"
+#include "frontend/syntax/ast_dump.h"
 #include "tests/support/eval_fixture.h"
 
 namespace {

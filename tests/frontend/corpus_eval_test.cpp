@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "frontend/pipeline.h"
-#include "frontend/value_format.h"
+#include "frontend/evaluation/value_format.h"
 
 namespace fe = openplx::frontend;
 namespace fs = std::filesystem;

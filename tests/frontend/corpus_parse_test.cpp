@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/ast_dump.h"
-#include "frontend/parser.h"
+#include "frontend/syntax/ast_dump.h"
+#include "frontend/syntax/parser.h"
 
 namespace fe = openplx::frontend;
 namespace fs = std::filesystem;

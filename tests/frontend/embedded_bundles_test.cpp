@@ -6,10 +6,10 @@
 #include <set>
 #include <sstream>
 
-#include "frontend/bundle_index.h"
-#include "frontend/bundles.h"
-#include "frontend/embedded_bundles.h"
-#include "frontend/program.h"
+#include "frontend/bundles/bundle_index.h"
+#include "frontend/bundles/bundles.h"
+#include "frontend/bundles/embedded_bundles.h"
+#include "frontend/semantics/program.h"
 #include "tests/support/eval_fixture.h"
 
 namespace {

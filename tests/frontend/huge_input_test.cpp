@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "frontend/lexer.h"
+#include "frontend/syntax/lexer.h"
 #include "tests/support/lcg_bytes.h"
 #include "tests/support/parse_fixture.h"
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "frontend/bundle_index.h"
-#include "frontend/parser.h"
+#include "frontend/bundles/bundle_index.h"
+#include "frontend/syntax/parser.h"
 #include "tests/support/eval_fixture.h"
 
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/lexer.h"
-#include "frontend/token.h"
+#include "frontend/syntax/lexer.h"
+#include "frontend/syntax/token.h"
 #include "tests/support/parse_fixture.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/parser.h"
+#include "frontend/syntax/parser.h"
 #include "tests/support/parse_fixture.h"
 
 namespace fe = openplx::frontend;

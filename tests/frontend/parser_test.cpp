@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/ast.h"
-#include "frontend/ast_dump.h"
+#include "frontend/syntax/ast.h"
+#include "frontend/syntax/ast_dump.h"
 #include "tests/support/parse_fixture.h"
 
 namespace {

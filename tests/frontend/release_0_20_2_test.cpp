@@ -10,10 +10,10 @@
 #include <set>
 #include <sstream>
 
-#include "frontend/bundles.h"
+#include "frontend/bundles/bundles.h"
 #include "frontend/natives/host_declarations.h"
-#include "frontend/parser.h"
-#include "frontend/program.h"
+#include "frontend/syntax/parser.h"
+#include "frontend/semantics/program.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 

@@ -9,10 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/ast_dump.h"
-#include "frontend/diagnostics.h"
-#include "frontend/lexer.h"
-#include "frontend/parser.h"
+#include "frontend/syntax/ast_dump.h"
+#include "frontend/diagnostics/diagnostics.h"
+#include "frontend/syntax/lexer.h"
+#include "frontend/syntax/parser.h"
 #include "tests/support/lcg_bytes.h"
 #include "tests/support/parse_fixture.h"
 

@@ -10,8 +10,8 @@
 #include <set>
 #include <sstream>
 
-#include "frontend/deprecations.h"
-#include "frontend/parser.h"
+#include "frontend/semantics/deprecations.h"
+#include "frontend/syntax/parser.h"
 #include "tests/support/eval_fixture.h"
 
 namespace fe = openplx::frontend;

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "frontend/source.h"
+#include "frontend/diagnostics/source.h"
 
 namespace fe = openplx::frontend;
 

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <string>
 
-#include "frontend/bundles.h"
-#include "frontend/evaluator.h"
+#include "frontend/bundles/bundles.h"
+#include "frontend/evaluation/evaluator.h"
 #include "frontend/pipeline.h"
-#include "frontend/value_format.h"
+#include "frontend/evaluation/value_format.h"
 #include "mjcf_emitter/emitter.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"

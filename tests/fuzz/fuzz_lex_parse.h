@@ -7,9 +7,9 @@
 #include <sstream>
 #include <string>
 
-#include "frontend/ast_dump.h"
-#include "frontend/diagnostics.h"
-#include "frontend/parser.h"
+#include "frontend/syntax/ast_dump.h"
+#include "frontend/diagnostics/diagnostics.h"
+#include "frontend/syntax/parser.h"
 
 namespace openplx::fuzz {
 

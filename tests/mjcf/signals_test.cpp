@@ -11,7 +11,7 @@
 #include <regex>
 #include <set>
 
-#include "frontend/quoted.h"
+#include "frontend/syntax/quoted.h"
 #include "mjcf_emitter/signal_binding.h"
 #include "tests/support/mjcf_fixture.h"
 

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "frontend/diagnostics.h"
+#include "frontend/diagnostics/diagnostics.h"
 #include "frontend/pipeline.h"
 #include "mjcf_emitter/emitter.h"
 #include "mjcf_emitter/model_fingerprint.h"

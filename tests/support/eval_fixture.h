@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "frontend/bundles.h"
-#include "frontend/evaluator.h"
+#include "frontend/bundles/bundles.h"
+#include "frontend/evaluation/evaluator.h"
 #include "frontend/pipeline.h"
-#include "frontend/program.h"
-#include "frontend/value_format.h"
+#include "frontend/semantics/program.h"
+#include "frontend/evaluation/value_format.h"
 #include "tests/support/parse_fixture.h"
 #include "tests/support/scratch_dir.h"
 

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "frontend/ast.h"
-#include "frontend/diagnostics.h"
-#include "frontend/lexer.h"
-#include "frontend/parser.h"
-#include "frontend/source.h"
+#include "frontend/syntax/ast.h"
+#include "frontend/diagnostics/diagnostics.h"
+#include "frontend/syntax/lexer.h"
+#include "frontend/syntax/parser.h"
+#include "frontend/diagnostics/source.h"
 
 namespace openplx::testing {
 

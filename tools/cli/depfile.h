@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/source.h"
+#include "frontend/diagnostics/source.h"
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::cli {
