@@ -1,0 +1,130 @@
+// Signals (inputs and outputs): their sources, composites' parts and IMU sensors' attachments.
+#include <algorithm>
+
+#include "snap/system_builder.h"
+
+namespace openplx::snap::detail {
+
+void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) {
+  const fe::Object& obj = ev_.graph().at(id);
+  const size_t index = view_.signals.size();
+  Signal& signal = view_.signals.emplace_back();  // filled in place
+  signal.object = id;
+  signal.input = model.input;
+  signal.path = path_of(id);
+  signal.type = obj.type->qualified;
+  // The torque converter's own signal models name it `torque_converter`, not `source`; an affine output's
+  // `source` is the signal it transforms.
+  const SignalSlots::Slots slots = signal_slots_.of(obj);
+  const fe::ObjectId source = model.affine_output ? fe::kNoObject : in_.object(id, slots[kSource]);
+  signal_sources_.push_back(source != fe::kNoObject ? source : in_.object(id, slots[kTorqueConverter]));
+  signal.where = where_of(id);
+  signal.enabled = in_.boolean(id, slots[kEnabled]).value_or(signal.enabled);
+  std::vector<fe::ObjectId>& parts = composite_parts_.emplace_back();
+  for (size_t list : {kTargets, kJointSources, kObjectSources, kSources}) {
+    if (!slots[list].present()) continue;
+    signal.composite = true;
+    for (fe::ObjectId part : in_.objects(id, slots[list])) parts.push_back(part);
+  }
+  using Composition = Signal::Composition;
+  if (model.broadcast) signal.composition = Composition::Broadcast;
+  if (model.affine_input || model.affine_output) {
+    signal.composite = true;
+    signal.composition = Composition::Affine;
+    signal.scale = real(id, "scale", 1.0);
+    signal.offset = real(id, "offset", 0.0);
+    parts = {object(id, signal.input ? "target" : "source")};
+  }
+  if (slots[kSensors].present()) signal.sensors = in_.objects(id, slots[kSensors]).size();
+  if (model.imu) {
+    signal.imu = true;
+    // A sensor without an attachment of its own sits where the IMU is attached.
+    const fe::ObjectId imu = object(id, "source");
+    const fe::ObjectId imu_attachment =
+        imu == fe::kNoObject ? fe::kNoObject : object(imu, "mate_connector_attachment");
+    for (fe::ObjectId field : in_.objects(id, "fields")) {
+      Signal::SensorField f;
+      f.axis = static_cast<int>(real(field, "field", 1.0)) - 1;
+      const fe::ObjectId sensor = object(field, "sensor");
+      if (sensor != fe::kNoObject) {
+        const fe::Object& logic = ev_.graph().at(sensor);
+        using Kind = Signal::SensorField::Kind;
+        f.kind = is(logic, accelerometer_)  ? Kind::Accelerometer
+                 : is(logic, gyroscope_)    ? Kind::Gyroscope
+                 : is(logic, magnetometer_) ? Kind::Magnetometer
+                                            : Kind::Unknown;
+        f.sensor_path = path_of(sensor);
+        const fe::ObjectId own = object(sensor, "mate_connector_attachment");
+        sensor_attachments_.emplace_back(index, signal.sensor_fields.size(),
+                                         own != fe::kNoObject ? own : imu_attachment);
+      }
+      signal.sensor_fields.push_back(std::move(f));
+    }
+  }
+}
+
+// IMU fields' and lidars' connectors by index.
+void SystemBuilder::resolve_sensor_attachments() {
+  if (sensor_attachments_.empty() && view_.lidars.empty()) return;  // no index to build
+  std::unordered_map<fe::ObjectId, int> index;
+  for (size_t k = 0; k < view_.connectors.size(); ++k)
+    index[view_.connectors[k].object] = static_cast<int>(k);
+  for (const auto& [signal, field, connector] : sensor_attachments_) {
+    auto it = index.find(connector);
+    view_.signals[signal].sensor_fields[field].connector = it == index.end() ? -1 : it->second;
+  }
+  for (Lidar& lidar : view_.lidars) {
+    auto it = index.find(lidar.attachment);
+    lidar.connector = it == index.end() ? -1 : it->second;
+  }
+}
+
+// A composite's parts are signals of the tree, found by object.
+void SystemBuilder::resolve_composites() {
+  if (std::all_of(composite_parts_.begin(), composite_parts_.end(),
+                  [](const std::vector<fe::ObjectId>& parts) { return parts.empty(); }))
+    return;  // no index to build
+  std::unordered_map<fe::ObjectId, int> index;
+  for (size_t k = 0; k < view_.signals.size(); ++k) index[view_.signals[k].object] = static_cast<int>(k);
+  for (size_t k = 0; k < view_.signals.size(); ++k) {
+    for (fe::ObjectId part : composite_parts_[k]) {
+      auto it = index.find(part);
+      view_.signals[k].parts.push_back(it == index.end() ? -1 : it->second);
+    }
+  }
+}
+
+// What a signal's source is: the first of interaction, mate, body, shaft and connector it is.
+void SystemBuilder::resolve_source(Signal& signal, fe::ObjectId source) {
+  if (source == fe::kNoObject) return;
+  if (sources_.empty()) build_source_index();
+  auto it = sources_.find(source);
+  if (it != sources_.end()) {
+    signal.source_kind = it->second.first;
+    signal.source = it->second.second;
+    return;
+  }
+  signal.source_kind = SignalSource::Other;
+  signal.source_path = path_of(source);
+}
+
+void SystemBuilder::build_source_index() {
+  sources_.reserve(view_.connectors.size() + view_.shafts.size() + view_.couplings.size() +
+                   view_.nodes.size() + view_.mates.size() + view_.interactions.size() +
+                   view_.lidars.size());  // no rehashing
+  // Inserted in reverse priority, so an object that were two things would keep the first kind.
+  auto add = [&](SignalSource kind, const auto& items, auto accept) {
+    for (size_t k = 0; k < items.size(); ++k)
+      if (accept(items[k])) sources_[items[k].object] = {kind, static_cast<int>(k)};
+  };
+  auto all = [](const auto&) { return true; };
+  add(SignalSource::Connector, view_.connectors, all);
+  add(SignalSource::Shaft, view_.shafts, all);
+  add(SignalSource::Coupling, view_.couplings, all);
+  add(SignalSource::Body, view_.nodes, [](const FrameNode& n) { return n.kind == FrameNode::Kind::Body; });
+  add(SignalSource::Mate, view_.mates, all);
+  add(SignalSource::Interaction, view_.interactions, all);
+  add(SignalSource::Lidar, view_.lidars, all);
+}
+
+}  // namespace openplx::snap::detail
