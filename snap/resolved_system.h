@@ -20,8 +20,8 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/natives/math_rotation.h"
 #include "frontend/diagnostics/source.h"
+#include "frontend/natives/math_rotation.h"
 
 namespace openplx::snap {
 

@@ -1,11 +1,12 @@
 // The evaluator, part 1: types, and building objects and their slots (which binding reaches which attribute).
-// Part 2 (evaluator_values.cpp) computes attribute values; part 3 (evaluator_expressions.cpp) evaluates expressions.
+// Part 2 (evaluator_values.cpp) computes attribute values; part 3 (evaluator_expressions.cpp) evaluates
+// expressions.
 #include "frontend/evaluation/evaluator.h"
 
 #include <cstring>
 
-#include "frontend/semantics/deprecations.h"
 #include "frontend/natives/builtin_natives.h"
+#include "frontend/semantics/deprecations.h"
 
 namespace openplx::frontend {
 namespace {

@@ -17,9 +17,9 @@
 #include <unordered_set>
 #include <vector>
 
-#include "frontend/semantics/entry_reach.h"
 #include "frontend/evaluation/function_ref.h"
 #include "frontend/evaluation/object_graph.h"
+#include "frontend/semantics/entry_reach.h"
 #include "frontend/semantics/program.h"
 
 namespace openplx::frontend {

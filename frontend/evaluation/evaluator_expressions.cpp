@@ -5,9 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "frontend/evaluation/value_format.h"
 #include "frontend/semantics/deprecations.h"
 #include "frontend/semantics/unknown_name_notes.h"
-#include "frontend/evaluation/value_format.h"
 
 namespace openplx::frontend {
 

@@ -13,8 +13,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "frontend/semantics/program.h"
 #include "frontend/evaluation/value.h"
+#include "frontend/semantics/program.h"
 
 namespace openplx::frontend {
 

@@ -10,9 +10,9 @@
 #include <set>
 
 #include "frontend/bundles/bundle_index.h"
-#include "frontend/semantics/deprecations.h"
 #include "frontend/bundles/embedded_bundles.h"
 #include "frontend/bundles/import_plugins.h"
+#include "frontend/semantics/deprecations.h"
 #include "frontend/syntax/parser.h"
 #include "frontend/urdf/urdf_importer.h"
 

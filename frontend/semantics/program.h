@@ -19,10 +19,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "frontend/syntax/ast.h"
 #include "frontend/bundles/bundles.h"
 #include "frontend/diagnostics/diagnostics.h"
 #include "frontend/diagnostics/source.h"
+#include "frontend/syntax/ast.h"
 
 namespace openplx::frontend {
 

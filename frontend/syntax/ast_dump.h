@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/syntax/ast.h"
 #include "frontend/diagnostics/source.h"
+#include "frontend/syntax/ast.h"
 #include "frontend/syntax/token.h"
 
 namespace openplx::frontend {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "frontend/pipeline.h"
 #include "frontend/evaluation/value_format.h"
+#include "frontend/pipeline.h"
 
 namespace fe = openplx::frontend;
 namespace fs = std::filesystem;

@@ -12,8 +12,8 @@
 
 #include "frontend/bundles/bundles.h"
 #include "frontend/natives/host_declarations.h"
-#include "frontend/syntax/parser.h"
 #include "frontend/semantics/program.h"
+#include "frontend/syntax/parser.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 

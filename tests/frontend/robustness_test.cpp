@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "frontend/syntax/ast_dump.h"
 #include "frontend/diagnostics/diagnostics.h"
+#include "frontend/syntax/ast_dump.h"
 #include "frontend/syntax/lexer.h"
 #include "frontend/syntax/parser.h"
 #include "tests/support/lcg_bytes.h"

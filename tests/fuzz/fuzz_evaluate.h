@@ -9,8 +9,8 @@
 
 #include "frontend/bundles/bundles.h"
 #include "frontend/evaluation/evaluator.h"
-#include "frontend/pipeline.h"
 #include "frontend/evaluation/value_format.h"
+#include "frontend/pipeline.h"
 #include "mjcf_emitter/emitter.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"

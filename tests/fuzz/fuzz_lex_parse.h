@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "frontend/syntax/ast_dump.h"
 #include "frontend/diagnostics/diagnostics.h"
+#include "frontend/syntax/ast_dump.h"
 #include "frontend/syntax/parser.h"
 
 namespace openplx::fuzz {

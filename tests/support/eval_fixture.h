@@ -14,9 +14,9 @@
 
 #include "frontend/bundles/bundles.h"
 #include "frontend/evaluation/evaluator.h"
+#include "frontend/evaluation/value_format.h"
 #include "frontend/pipeline.h"
 #include "frontend/semantics/program.h"
-#include "frontend/evaluation/value_format.h"
 #include "tests/support/parse_fixture.h"
 #include "tests/support/scratch_dir.h"
 

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "frontend/syntax/ast.h"
 #include "frontend/diagnostics/diagnostics.h"
+#include "frontend/diagnostics/source.h"
+#include "frontend/syntax/ast.h"
 #include "frontend/syntax/lexer.h"
 #include "frontend/syntax/parser.h"
-#include "frontend/diagnostics/source.h"
 
 namespace openplx::testing {
 

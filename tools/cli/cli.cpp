@@ -13,15 +13,15 @@
 #include <sstream>
 #include <string_view>
 
-#include "frontend/syntax/ast_dump.h"
 #include "frontend/bundles/bundles.h"
 #include "frontend/diagnostics/diagnostics.h"
 #include "frontend/evaluation/evaluator.h"
-#include "frontend/syntax/lexer.h"
-#include "frontend/syntax/parser.h"
+#include "frontend/evaluation/value_format.h"
 #include "frontend/pipeline.h"
 #include "frontend/semantics/program.h"
-#include "frontend/evaluation/value_format.h"
+#include "frontend/syntax/ast_dump.h"
+#include "frontend/syntax/lexer.h"
+#include "frontend/syntax/parser.h"
 #include "mjcf_emitter/check.h"
 #include "mjcf_emitter/emitter.h"
 #include "mjcf_emitter/mesh_files.h"
