@@ -1,6 +1,8 @@
 // What native functions see (NativeCall) and the registry they are found in.
 #include "frontend/evaluation/evaluator.h"
 
+#include <cmath>
+
 namespace openplx::frontend {
 
 NativeRegistry& NativeRegistry::global() {
