@@ -1,5 +1,6 @@
 // A step: mj_step2 then mj_step1 with the drive laws between, MuJoCo's warnings turned into located
 // diagnostics, and what is kept of each step (constraint forces, mate forces, clutch ramps, mocap motion).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <string>
 
