@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How the converter's whole process grows with its input (issue 29's sizes): URDF robots of 1,000 and 10,000
+# How the converter's whole process grows with its input: URDF robots of 1,000 and 10,000
 # links, inheritance chains of 1,000 and 10,000 models, and 100 MB of random bytes. Prints each run's wall
 # time and peak memory (GNU time), and the growth from 1,000 to 10,000 (linear: 10x).
 #

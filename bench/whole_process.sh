@@ -10,7 +10,7 @@
 #   bench/whole_process.sh [BUILD_DIR]     default: build
 #   RUNS=N (default 7) sets the runs per command (after two warm-up rounds).
 #
-# Models: 1,000 and 10,000 hinged boxes on the world (generated here), the README's wide tree of trunks with
+# Models: 1,000 and 10,000 hinged boxes on the world (generated here), docs/performance.md's wide tree of trunks with
 # nine branches (1,000 bodies), small corpus models and two of bullet3's URDF robots.
 set -euo pipefail
 cd "$(dirname "$0")/.."

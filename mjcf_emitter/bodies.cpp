@@ -124,11 +124,12 @@ double Lowering::density_of(const sn::Geometry& g) {
   return g.material >= 0 ? view_.materials[g.material].density : 1000.0;
 }
 
-// Mass properties (README "Bodies" and "URDF"): the model's tensor when given; else from the geometry that
-// counts for mass at its material's density (visual geometry never counts), scaled to the given mass.
-// Meshes: MuJoCo computes their volumes in a draft (finish_with_draft), exactly, or for a URDF link
-// without <inertial> (the URDF importer's `urdf_mass` marker, BodyProperties::urdf_mass) with MuJoCo
-// 2.2.2's default formula, as MuJoCo's own URDF importer does (--urdf-exact-mesh-mass: exactly).
+// Mass properties (docs/mapping.md "Physics3D: bodies and geometries" and docs/urdf.md): the model's tensor
+// when given; else from the geometry that counts for mass at its material's density (visual geometry never
+// counts), scaled to the given mass. Meshes: MuJoCo computes their volumes in a draft (finish_with_draft),
+// exactly, or for a URDF link without <inertial> (the URDF importer's `urdf_mass` marker,
+// BodyProperties::urdf_mass) with MuJoCo 2.2.2's default formula, as MuJoCo's own URDF importer does
+// (--urdf-exact-mesh-mass: exactly).
 void Lowering::emit_inertial(Element& body, int node) {
   const sn::FrameNode& n = view_.nodes[node];
   using UrdfMass = sn::BodyProperties::UrdfMass;

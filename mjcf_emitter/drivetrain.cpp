@@ -11,8 +11,9 @@ using natives::affine_inverse;
 // power line) turn as one: each such group is folded into one MuJoCo joint, the 3-D joint of its first
 // actuator (else its first shaft's own), which carries the others' inertia as armature. What acts on a folded
 // shaft acts on that joint; no equality holds the group, so it is exact at every step (a rigid equality leaks
-// (1 - d) of what it carries in the step it starts carrying it: README "Couplings"). Gears and gearboxes are
-// not folded: their ratio changes at run time and their torque output is their equality's force.
+// (1 - d) of what it carries in the step it starts carrying it: docs/mapping.md "Couplings"). Gears and
+// gearboxes are not folded: their ratio changes at run time and their torque output is their equality's
+// force.
 void Lowering::fold_rigid_shafts() {
   const size_t n = view_.shafts.size();
   shaft_group_.resize(n);

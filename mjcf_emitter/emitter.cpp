@@ -9,8 +9,8 @@ namespace openplx::mjcf {
 
 namespace {
 
-// MuJoCo's noslip post-solver (README "Velocity motors", "Clutches and brakes"). Isolated friction rows
-// settle in one sweep and stop the sweeps after the next; a chain of coupled rows uses them all.
+// MuJoCo's noslip post-solver (docs/mapping.md "Velocity motors", "Clutches and brakes"). Isolated friction
+// rows settle in one sweep and stop the sweeps after the next; a chain of coupled rows uses them all.
 constexpr int kNoslipIterations = 10;
 // Its stopping test divides the improvement by the mean joint inertia, which the motors' heavy reference
 // joints inflate up to a billionfold (velocity_motors.cpp): the default 1e-6 stops it after one sweep

@@ -26,7 +26,7 @@ struct EmitOptions {
   std::string output_dir;   // mesh files are written relative to it; empty: absolute paths
   double timestep = 0.002;  // <option timestep> (--timestep): OpenPLX has no time-step setting
   // The MuJoCo the numbers are for (--mujoco): the file loads in both, but soft welds' solref and
-  // torquescale follow laws that changed in 3.0 (README "MuJoCo versions").
+  // torquescale follow laws that changed in 3.0 (docs/mapping.md "MuJoCo versions").
   enum class MuJoCo { V2, V3 };
   MuJoCo mujoco = MuJoCo::V2;
   // The "initial" keyframe (initial controls and free bodies' velocities). A keyframe must cover the whole
@@ -40,7 +40,7 @@ struct EmitOptions {
   // the initial state, found by compiling and forwarding a draft of the document in MuJoCo (a note for each).
   bool exclude_initial_overlaps = false;
   // --urdf-exact-mesh-mass: a URDF link without <inertial> takes its mesh volumes exactly, as OpenPLX bodies
-  // do, instead of as MuJoCo 2.2.2's URDF importer computes them (its legacy formula; README "URDF").
+  // do, instead of as MuJoCo 2.2.2's URDF importer computes them (its legacy formula; docs/urdf.md).
   bool urdf_exact_mesh_mass = false;
   // COLLADA coordinates taken as written, as RViz and Gazebo show them, instead of turning <up_axis> onto +Z.
   bool collada_ignore_up_axis = false;

@@ -132,7 +132,7 @@ std::optional<MateCompliance> Lowering::compliance(const sn::Mate& mate) {
 // constant 2 h (the shortest refsafe keeps), damping ratio 1/2, impedance 0.9999 (the largest it accepts).
 // That gives stiffness 1/h^2 and damping 1/h, which under semi-implicit Euler is deadbeat: an error in
 // position and velocity is gone after two steps (critical damping, ratio 1, keeps 3/4 of a position error per
-// step). What remains is the impedance's leak, (1 - d) of what the row carries in each step (README
+// step). What remains is the impedance's leak, (1 - d) of what the row carries in each step (docs/mapping.md
 // "Couplings"). Flexible ones are set by finish_with_draft.
 void Lowering::stiffen_equalities(Element& root) {
   Element* equality = root.child("equality");

@@ -1,8 +1,8 @@
 // The MJCF emitter's shared state, internal to mjcf_emitter/: one Lowering object runs the passes in order
 // (run, in emitter.cpp). Each pass lives in its own file and writes one MJCF concern; later passes
 // read what earlier ones recorded (the tree, the elements of bodies and joints, the actuators). Inputs are
-// only the resolved system, the options and the diagnostic sink. See README.md for which file writes which
-// element.
+// only the resolved system, the options and the diagnostic sink. See mjcf_emitter/README.md for which file
+// writes which element.
 #pragma once
 
 #include <algorithm>

@@ -156,8 +156,8 @@ struct RuntimeLaw {
     TorqueConverter,
     // actuators {spring} (its <general> stand-in; the fixed tendon of the same name holds the joint alone);
     // parameter = SPOOK relaxation time (s); joint_damping = the damping the stand-in put on the joint. The
-    // runtime makes the tendon's friction row AGX's spring row (README "Springs") and adds its force to the
-    // actuator's.
+    // runtime makes the tendon's friction row AGX's spring row (docs/mapping.md "Springs") and adds its force
+    // to the actuator's.
     Spring,
   };
   Kind kind = Kind::Engine;

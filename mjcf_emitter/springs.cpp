@@ -1,6 +1,6 @@
-// Lowering pass, springs (README "Springs"). AGX solves a spring as one constraint row: compliance 1/k,
-// SPOOK damping (a relaxation time), its force bounded by the effort range, solved with everything else at
-// the velocity level, so it brakes as hard as its limit allows. MuJoCo 2.2.2's only force-bounded row is
+// Lowering pass, springs (docs/mapping.md "Springs"). AGX solves a spring as one constraint row: compliance
+// 1/k, SPOOK damping (a relaxation time), its force bounded by the effort range, solved with everything else
+// at the velocity level, so it brakes as hard as its limit allows. MuJoCo 2.2.2's only force-bounded row is
 // friction loss, whose reference acceleration has no position term; the runtime gives it one (RuntimeLaw
 // Spring: the row's reference and softness are written between mj_step1 and mj_step2). The MJCF alone
 // carries the nearest static law: an actuator pushing k (rest - q) - b qdot clamped to the effort range.

@@ -1,4 +1,4 @@
-// Lowering pass, velocity motors as constraints (README decision "Velocity motors"). AGX solves a velocity
+// Lowering pass, velocity motors as constraints (docs/mapping.md "Velocity motors"). AGX solves a velocity
 // motor as a 1-D velocity constraint whose force stays within the effort range. MuJoCo 2.2.2 has one
 // force-bounded velocity constraint: friction loss, which holds a velocity at zero. So each motor gets a
 // reference joint that turns at the target speed, and a fixed tendon (motor joint minus reference) whose

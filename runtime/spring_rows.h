@@ -1,5 +1,5 @@
-// Springs as AGX solves them (mjcf::RuntimeLaw::Kind::Spring, README "Springs"): one constraint row per
-// spring with compliance 1/k, SPOOK damping and its force bounded by the effort range. MuJoCo 2.2.2's
+// Springs as AGX solves them (mjcf::RuntimeLaw::Kind::Spring, docs/mapping.md "Springs"): one constraint row
+// per spring with compliance 1/k, SPOOK damping and its force bounded by the effort range. MuJoCo 2.2.2's
 // force-bounded row is friction loss; between mj_step1 and mj_step2 each spring's friction row (its fixed
 // tendon, the joint alone) gets the SPOOK reference acceleration and softness, so MuJoCo's solver finds the
 // row force with every other constraint, clamped to the range. The MJCF's spring actuator keeps the centre

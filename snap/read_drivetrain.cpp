@@ -53,8 +53,8 @@ void read_friction_coupling(AttributeReader& in, fe::ObjectId id, DriveCoupling&
   c.engagement_fraction = in.real(id, "initial_engagement_fraction", 1.0);
   in.require(c.engagement_fraction >= 0 && c.engagement_fraction <= 1, id, "initial_engagement_fraction",
              c.engagement_fraction, "an engagement fraction is from 0 to 1");
-  // AGX's threshold for locking the plates (README "Clutches and brakes"): MuJoCo's friction rows stick and
-  // slip by the solver alone, so it has nothing to set. Read, so it is not reported as ignored.
+  // AGX's threshold for locking the plates (docs/mapping.md "Clutches and brakes"): MuJoCo's friction rows
+  // stick and slip by the solver alone, so it has nothing to set. Read, so it is not reported as ignored.
   (void)in.number(id, "min_relative_slip_ratio");
   c.automatic = in.graph().at(id).has("engagement_duration");
   if (!c.automatic) return;

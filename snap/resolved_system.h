@@ -38,7 +38,7 @@ struct BodyProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the CM frame's origin, in its axes
   Transform cm;                                       // relative to the body frame
   bool dynamic = true;
-  // A URDF link's mass law, from the URDF importer's `urdf_mass` marker (README "URDF"): Collisions for a
+  // A URDF link's mass law, from the URDF importer's `urdf_mass` marker (docs/urdf.md): Collisions for a
   // link without <inertial> (MuJoCo's importer: its collision geometry at 1000 kg/m^3, MuJoCo's default mesh
   // volumes), AsWritten for an <inertial> of mass 0 (massless, where OpenPLX's 0 means "computed").
   enum class UrdfMass { None, Collisions, AsWritten };

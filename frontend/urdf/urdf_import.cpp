@@ -536,8 +536,8 @@ UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text, c
     if (link->inertial) {
       inertial(c, *link);
     } else {
-      // No <inertial>: the mass MuJoCo's URDF importer gives the link, from its collision geometry (README
-      // "URDF", mass laws). The emitter reads this marker; OpenPLX's own bodies never carry it.
+      // No <inertial>: the mass MuJoCo's URDF importer gives the link, from its collision geometry
+      // (docs/urdf.md, mass laws). The emitter reads this marker; OpenPLX's own bodies never carry it.
       w.line("        urdf_mass is String: \"collisions\"");
     }
     // Geometries keep their URDF names (MuJoCo's compiler drops them) behind a prefix that cannot clash with

@@ -181,7 +181,7 @@ TEST_F(Mjcf, PendulumSwingsWithThePhysicalPeriod) {
 // +-200 N. The clamped spring never pushes harder than 200 N, and the rod swings about the rest (the
 // unclamped spring would throw it with 250 kN), never farther than it started, its swing shrinking.
 // AGXUnity's expectation (rest within 1 mm at 2 s) holds for the same spring without limits, checked below;
-// README "Springs" says why the limited one cannot meet it.
+// docs/mapping.md "Springs" says why the limited one cannot meet it.
 TEST_F(Mjcf, LinearSpringTestSpringStaysWithinItsEffortLimit) {
   ASSERT_TRUE(load_corpus("LinearSpringTest.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("spring"));

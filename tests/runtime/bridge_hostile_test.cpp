@@ -1,4 +1,4 @@
-// SignalBridge against manifests that do not fit (issue 29): inconsistent manifests are LoadErrors naming the
+// SignalBridge against manifests that do not fit: inconsistent manifests are LoadErrors naming the
 // manifest and the signal (they crashed the bridge), a manifest of another model is refused by its
 // fingerprint or by the elements it names, a second bridge on the same data and prefix is refused, and
 // after_step() throws SimulationError when MuJoCo had to reset the data.

@@ -1,5 +1,5 @@
-// Drivetrain parts against the physics they model (README "Drivetrains"): gearbox gears and neutral, the
-// limited-slip differential's breakaway torque and lock-up, a viscous gear's exponential approach, engine
+// Drivetrain parts against the physics they model (docs/mapping.md "Drivetrains"): gearbox gears and neutral,
+// the limited-slip differential's breakaway torque and lock-up, a viscous gear's exponential approach, engine
 // torque from its curve at the measured speed with the idle governor, a torque converter's fluid law.
 // Shafts are driven and held by velocity motors (motor constraints), so speeds are set exactly.
 #include <gtest/gtest.h>

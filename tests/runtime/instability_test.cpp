@@ -1,4 +1,4 @@
-// Never silently wrong (issue 29), the runtime's side: a step MuJoCo had to reset is a SimulationError that
+// Never silently wrong, the runtime's side: a step MuJoCo had to reset is a SimulationError that
 // names the joint and body, the values and a hint (or a warning under OnInstability::Continue); MuJoCo's
 // messages never become MUJOCO_LOG.TXT; inputs beyond the model's range are clamped and said once; hostile
 // spans, gears, paths and time steps are errors with a message.

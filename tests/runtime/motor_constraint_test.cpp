@@ -1,4 +1,4 @@
-// Motors, springs, ranges and couplings behave like AGX's constraints (README "Velocity motors",
+// Motors, springs, ranges and couplings behave like AGX's constraints (docs/mapping.md "Velocity motors",
 // "Springs", "Couplings"): a velocity motor reaches its target in one step and holds it under a load
 // within its effort range without creep, slips at exactly its limit beyond it; enable inputs switch motors,
 // springs and ranges; a rigid loop holds; the initial keyframe alone starts the motors in plain MuJoCo.
@@ -288,7 +288,7 @@ TEST(DriveTrainFriction, BrakeHoldsWithinItsCapacityAndSlipsBeyond) {
   }
 }
 
-// drive_train_brake (issue 15's case): the motor's shaft drives the hinge's shaft through an automatic
+// drive_train_brake: the motor's shaft drives the hinge's shaft through an automatic
 // brake (1000 N m) in the power line; the motor's effort is limited to 200 N m. Disengaged, the brake passes
 // the motor's 1.0 rad/s to the hinge; engaged (ramped in over 0.1 s) it holds the line at 0 against the
 // motor within 0.5 s.
@@ -400,7 +400,7 @@ TEST(DriveTrainFriction, AutomaticClutchRampsOverItsDuration) {
   EXPECT_EQ(fraction.real(), 0.0);
 }
 
-// drive_train_torque_input (issue 15's case): drive_train_velocity_input with a DriveTrain.TorqueMotor on
+// drive_train_torque_input: drive_train_velocity_input with a DriveTrain.TorqueMotor on
 // the shaft. -1000 N m for 1 s through the rigid hinge actuator spins the hinge past -10 rad/s: about
 // -1000 N m s / (1 kg m^2 shaft + 10 kg rod about its end, m L^2 / 3 = 3.3 kg m^2), less gravity's share.
 TEST(DriveTrainMotor, TorqueMotorOnAShaftDrivesTheHinge) {

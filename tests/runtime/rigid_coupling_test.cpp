@@ -1,8 +1,8 @@
-// Rigid 1-D couplings are exact (README "Drivetrains", "Couplings"): a shaft held 1:1 to a hinge or prismatic
-// joint by a HingeActuator/PrismaticActuator is folded into that joint, so the joint follows the velocity
-// motor on the shaft within the step, under any load the motor's effort range holds, at dt 0.002 and 0.02;
-// the shaft's signals read the joint. Gears keep a rigid equality (their ratio changes at run time): within
-// 1e-6 0.1 s after a target flip.
+// Rigid 1-D couplings are exact (docs/mapping.md "Drivetrains", "Couplings"): a shaft held 1:1 to a hinge or
+// prismatic joint by a HingeActuator/PrismaticActuator is folded into that joint, so the joint follows the
+// velocity motor on the shaft within the step, under any load the motor's effort range holds, at dt 0.002 and
+// 0.02; the shaft's signals read the joint. Gears keep a rigid equality (their ratio changes at run time):
+// within 1e-6 0.1 s after a target flip.
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
@@ -86,8 +86,8 @@ rt::Simulation load(const openplx::testing::ScratchDir& dir, const std::string& 
   rt::LoadOptions options;
   options.timestep = timestep;
   rt::Simulation sim = rt::Simulation::load(file.string(), options);
-  // The motor's friction row is exact only with MuJoCo's noslip post-solver (README "Velocity motors");
-  // without it the row leaks h (1 - d) tau / I, which is the motor's error, not the coupling's.
+  // The motor's friction row is exact only with MuJoCo's noslip post-solver (docs/mapping.md "Velocity
+  // motors"); without it the row leaks h (1 - d) tau / I, which is the motor's error, not the coupling's.
   mjModel* m = const_cast<mjModel*>(sim.model());
   if (m->opt.noslip_iterations == 0) m->opt.noslip_iterations = 5;
   return sim;

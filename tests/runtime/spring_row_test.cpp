@@ -1,8 +1,8 @@
-// Springs behave as AGX's spring constraint (README "Springs"): one row with compliance 1/k, SPOOK damping
-// and its force bounded by the effort range, solved with the rest of the system. Swept over what a user may
-// set (effort limits 150, 200, 1000 N and none; stiffness 1e3..1e6; time steps 0.002 and 0.02): the rod comes
-// to rest where its springs balance its weight, a spring never pushes beyond its limits, parallel springs
-// keep their own rests, and the motion is AGX's row step for step.
+// Springs behave as AGX's spring constraint (docs/mapping.md "Springs"): one row with compliance 1/k, SPOOK
+// damping and its force bounded by the effort range, solved with the rest of the system. Swept over what a
+// user may set (effort limits 150, 200, 1000 N and none; stiffness 1e3..1e6; time steps 0.002 and 0.02): the
+// rod comes to rest where its springs balance its weight, a spring never pushes beyond its limits, parallel
+// springs keep their own rests, and the motion is AGX's row step for step.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// The converter's heap set-up (tools/cli/huge_page_heap.h): the arena's pages in use become a huge page, a
-// thread faults in memory ahead of where the arena is in use and no further than asked, and what the
+// The converter's heap set-up (tools/cli/memory/huge_page_heap.h): the arena's pages in use become a huge
+// page, a thread faults in memory ahead of where the arena is in use and no further than asked, and what the
 // program writes meanwhile is never changed. Each test is a process of its own (ctest runs them one
 // by one), so the process-wide malloc settings it makes stay there.
 #include <gtest/gtest.h>
@@ -16,8 +16,8 @@
 #include <thread>
 #include <vector>
 
-#include "tools/cli/huge_page_heap.h"
-#include "tools/cli/small_object_arena.h"
+#include "tools/cli/memory/huge_page_heap.h"
+#include "tools/cli/memory/small_object_arena.h"
 
 namespace cli = openplx::cli;
 

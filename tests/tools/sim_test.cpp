@@ -117,7 +117,7 @@ TEST(Sim, ValueSyntax) {
 
 }  // namespace
 
-// Issue 29: a run MuJoCo had to reset is exit 1 with the message, never a printed value.
+// A run MuJoCo had to reset is exit 1 with the message, never a printed value.
 TEST(Sim, DivergingModelExitsOneWithTheMessage) {
   const openplx::testing::ScratchDir scratch;
   const fs::path model = scratch / "light_rod.openplx";

@@ -1,6 +1,6 @@
-// The converter's small-block arena (tools/cli/small_object_arena.h), which its operator new uses: blocks
-// are aligned, as large as asked, never overlap, come back through the free list of their size, and larger
-// sizes are left to malloc. The whole converter runs on it in every test that starts the openplx2mjcf
+// The converter's small-block arena (tools/cli/memory/small_object_arena.h), which its operator new uses:
+// blocks are aligned, as large as asked, never overlap, come back through the free list of their size, and
+// larger sizes are left to malloc. The whole converter runs on it in every test that starts the openplx2mjcf
 // executable; these hold the arena itself to its contract.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "tools/cli/small_object_arena.h"
+#include "tools/cli/memory/small_object_arena.h"
 
 namespace arena = openplx::cli::arena;
 

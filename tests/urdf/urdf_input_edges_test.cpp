@@ -1,4 +1,4 @@
-// What real URDF files bring to the import's door (issue 31): file names in any case (`robot.URDF`), numbers
+// What real URDF files bring to the import's door: file names in any case (`robot.URDF`), numbers
 // written every way urdfdom reads them (and no way it does not), unexpanded xacro templates, `package://`
 // meshes whose package is nowhere, and `--check` findings placed at the URDF element they concern.
 #include <console_bridge/console.h>

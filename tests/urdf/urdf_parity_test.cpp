@@ -167,7 +167,8 @@ TEST_F(UrdfParity, BodiesMassesAndPosesMatchMuJoCosUrdfCompiler) {
     // urdf_real_robots_test). The free motion is compared with our couplings off.
     ASSERT_EQ(theirs->neq, 0);
     for (int e = 0; e < ours->neq; ++e) ours->eq_active[e] = 0;
-    // Deliberate difference: our limits are hard stops (README "Interactions"); theirs get the same softness.
+    // Deliberate difference: our limits are hard stops (docs/mapping.md "Physics3D: mates"); theirs get the
+    // same softness.
     for (int j = 0; j < theirs->njnt; ++j) {
       const int o = mj_name2id(ours, mjOBJ_JOINT, mj_id2name(theirs, mjOBJ_JOINT, j));
       if (o < 0) continue;

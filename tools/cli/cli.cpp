@@ -32,7 +32,7 @@
 #include "snap/snap_dump.h"
 #include "tools/cli/atomic_file.h"
 #include "tools/cli/depfile.h"
-#include "tools/cli/huge_page_heap.h"
+#include "tools/cli/memory/conversion_memory.h"
 
 #ifndef OPENPLX_VERSION
 #define OPENPLX_VERSION "0.0.0"
@@ -132,7 +132,6 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
 // --check-time's bound: a check is for catching a model that blows up, not for running it.
 constexpr double kMaxCheckTime = 100;
 
-constexpr uintmax_t kHugePageInputBytes = 32 << 10;
 bool ending_after_run = false;  // end_process_after_run(): the process exits as soon as run() returns
 
 // Hands `object` to the process's exit instead of freeing it piece by piece (tens of thousands of objects
@@ -232,15 +231,8 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
     return false;
   }
   if (ending_after_run) {
-    // A model written out by hand or by a script (boxes, trees) needs a few hundred bytes of heap per byte of
-    // text; a small one does not pay for the reservation.
     const uintmax_t size = std::filesystem::file_size(options.input, ec);
-    // Capped: only touched pages cost memory, but a reservation need not outgrow any machine.
-    // Prefaulted: 48 bytes of small-block arena per byte of text, below the 70-80 a plain model uses
-    // (boxes, trees), so that a model that needs less, or text that is mostly comments, gains little
-    // resident memory it does not use.
-    if (!ec && size >= kHugePageInputBytes)
-      reserve_huge_page_heap(std::min<uintmax_t>(size * 512, 2ull << 30), size * 48);
+    if (!ec) prepare_memory_for_input(size);
   }
   fe::LoadRequest request{options.input, options.model, options.bundle_dirs, std::nullopt};
   request.default_bundles = options.default_bundles;

@@ -1,6 +1,6 @@
 // The `openplx2mjcf` command line, callable in-process so tests run it under the sanitizers.
 //
-//   openplx2mjcf FILE [options] (usage() lists them all; README "Options" too)
+//   openplx2mjcf FILE [options] (usage() lists them all; README "Command line" too)
 //
 // Exit status: 0 success (warnings allowed), 1 input errors (diagnostics on `err`), 2 usage errors.
 #pragma once

@@ -1,6 +1,6 @@
 // urdf-survey FOLDER...: every .urdf under each folder (sorted, one child process each, with a time limit)
 // through our converter and through MuJoCo's own URDF compiler, compared body by body; one report per file,
-// then a summary per folder and over all of them. See README "URDF" (issue 31).
+// then a summary per folder and over all of them. See docs/urdf.md.
 #include <unistd.h>
 
 #include <algorithm>

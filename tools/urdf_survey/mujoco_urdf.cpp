@@ -43,7 +43,7 @@ std::string without_packages(std::string xml, const fs::path& urdf_dir) {
 }  // namespace
 
 fs::path find_package(const std::string& package, const fs::path& urdf_dir) {
-  // ROS's order, which our importer follows too (README "URDF"): ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, then
+  // ROS's order, which our importer follows too (docs/urdf.md): ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, then
   // a folder named P at or above the URDF's.
   if (const char* path = std::getenv("ROS_PACKAGE_PATH")) {
     std::stringstream entries(path);

@@ -1,4 +1,4 @@
-#include "tools/cli/small_object_arena.h"
+#include "tools/cli/memory/small_object_arena.h"
 
 #include <sys/mman.h>
 

@@ -1,4 +1,4 @@
-#include "tools/cli/huge_page_heap.h"
+#include "tools/cli/memory/huge_page_heap.h"
 
 #include <malloc.h>
 #include <sys/mman.h>
@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <thread>
 
-#include "tools/cli/small_object_arena.h"
+#include "tools/cli/memory/small_object_arena.h"
 
 namespace openplx::cli {
 

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <new>
 
-#include "tools/cli/small_object_arena.h"
+#include "tools/cli/memory/small_object_arena.h"
 
 namespace {
 

@@ -3,10 +3,10 @@
 // on each; this arena spends about ten: one reserved address range cut into 16 KiB pages, each page holding
 // blocks of one size class (16-byte steps up to 2 KiB), a free list per class for the blocks given back.
 //
-// Only the openplx2mjcf executable routes operator new and delete here (tools/cli/replace_new.cpp); the
-// libraries and tests keep the standard ones. Thread-safe without a lock on the way: each thread has its own
-// pages and free lists (a block freed by another thread joins that thread's list), and the caches of threads
-// that end are taken up by the next ones.
+// Only the openplx2mjcf executable routes operator new and delete here (tools/cli/memory/replace_new.cpp);
+// the libraries and tests keep the standard ones. Thread-safe without a lock on the way: each thread has its
+// own pages and free lists (a block freed by another thread joins that thread's list), and the caches of
+// threads that end are taken up by the next ones.
 #pragma once
 
 #include <cstddef>
