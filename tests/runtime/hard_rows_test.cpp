@@ -1,8 +1,8 @@
 // Friction-row drives and ranges are as hard as AGX's rows (docs/mapping.md "Velocity motors", "Clutches and
-// brakes", "Interactions"): a brake holds a saturated motor at any effort up to its capacity and slips
-// carrying exactly its capacity beyond; a velocity motor holds its target under any load up to its effort
-// limit; a range holds against any motor up to its effort limit, hinge and prismatic, at h = 0.002 and 0.02
-// s.
+// brakes", "Physics3D: motors, springs and ranges"): a brake holds a saturated motor at any effort up to its
+// capacity and slips carrying exactly its capacity beyond; a velocity motor holds its target under any load
+// up to its effort limit; a range holds against any motor up to its effort limit, hinge and prismatic, at h =
+// 0.002 and 0.02 s.
 #include <gtest/gtest.h>
 
 #include <algorithm>
