@@ -1,0 +1,157 @@
+// The signal catalogue (docs/signal-catalogue.md): every Input and Output type the bundles declare, attached
+// to every source fixture its `source` accepts, converted; the document must say what the converter does
+// today. With OPENPLX_UPDATE_CATALOGUE=1 the test writes the document instead of comparing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "frontend/pipeline.h"
+#include "tests/signal_catalogue/catalogue_document.h"
+#include "tests/signal_catalogue/probe_conversion.h"
+#include "tests/signal_catalogue/signal_types.h"
+#include "tests/signal_catalogue/source_fixtures.h"
+#include "tests/support/scratch_dir.h"
+
+namespace {
+
+namespace fe = openplx::frontend;
+namespace fs = std::filesystem;
+namespace cat = openplx::catalogue;
+
+const fs::path kDocument = fs::path(OPENPLX_TEST_DATA_DIR).parent_path() / "docs" / "signal-catalogue.md";
+
+std::vector<cat::SignalType> bundle_types() {
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink;
+  fe::Program program(sources, sink);
+  program.set_bundles(fe::discover_bundles(fe::bundle_search_path({}), sources, sink));
+  return cat::bundle_signal_types(program);
+}
+
+// A fixture evaluated: the model of its source, and which of `types` accept it.
+struct Evaluated {
+  std::string source_type;  // "" when the source was not found
+  std::vector<const cat::SignalType*> accepting;
+};
+
+Evaluated evaluate(const fs::path& file, const cat::SourceFixture& fixture,
+                   const std::vector<cat::SignalType>& types) {
+  fe::SourceManager sources;
+  fe::DiagnosticSink sink;
+  fe::Evaluation e =
+      fe::evaluate_file(fe::LoadRequest{file.string(), std::nullopt, {}, std::nullopt}, sources, sink);
+  Evaluated out;
+  if (e.root == fe::kNoObject) return out;
+  fe::ObjectId at = e.root;
+  std::istringstream parts(fixture.source);
+  for (std::string part; at != fe::kNoObject && std::getline(parts, part, '.');) {
+    const fe::Value* v = e.evaluator->value(at, part);
+    at = v && v->kind == fe::Value::Kind::Object ? v->object : fe::kNoObject;
+  }
+  if (at == fe::kNoObject) return out;
+  const fe::ModelInfo* model = e.evaluator->graph().at(at).type;
+  // A model of the fixture's own file is named with the bundle model it extends.
+  out.source_type = model->qualified.empty() ? model->name : model->qualified;
+  if (!model->doc || !model->doc->bundle) {
+    const fe::ModelInfo* base = model->base;
+    while (base && !(base->doc && base->doc->bundle)) base = base->base;
+    if (base) out.source_type += " is " + base->qualified;
+  }
+  for (const cat::SignalType& t : types) {
+    for (const std::string& accepted : t.accepts) {
+      const fe::ModelInfo* wanted = e.program->builtin_model(accepted);
+      if (wanted && model->is_subtype_of(wanted)) {
+        out.accepting.push_back(&t);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+std::string probe_lines(const cat::SignalType& t, const std::string& source) {
+  std::string extra = cat::extra_lines(t.name);
+  for (size_t at; (at = extra.find("{source}")) != std::string::npos;) extra.replace(at, 8, source);
+  return "    probe is " + t.name + ":\n        " + t.source_attribute + ": " +
+         (t.accepts_array ? "[" + source + "]" : source) + "\n" + extra;
+}
+
+// The first line where `a` and `b` differ, for the failure message.
+std::string first_difference(const std::string& a, const std::string& b) {
+  std::istringstream x(a), y(b);
+  std::string l, r;
+  for (int line = 1;; ++line) {
+    const bool more_l = static_cast<bool>(std::getline(x, l)), more_r = static_cast<bool>(std::getline(y, r));
+    if (!more_l && !more_r) return "";
+    if (l != r || more_l != more_r)
+      return "line " + std::to_string(line) + ":\n  document: " + (more_l ? l : "<end>") +
+             "\n  code:     " + (more_r ? r : "<end>");
+  }
+}
+
+TEST(SignalCatalogue, TheBundlesDeclareSignalsOfEveryFamily) {
+  const std::vector<cat::SignalType> types = bundle_types();
+  EXPECT_GE(types.size(), 50u);
+  auto has = [&](const std::string& name) {
+    return std::any_of(types.begin(), types.end(), [&](const cat::SignalType& t) { return t.name == name; });
+  };
+  for (const char* name : {"Physics.Signals.AngleOutput", "Physics3D.Signals.Torque3DInput",
+                           "DriveTrain.Signals.TorqueConverterPumpTorqueOutput", "Sensors.Signals.IMUOutput",
+                           "Robotics.Signals.RobotInput", "Control.Virtual.BroadcastInput"})
+    EXPECT_TRUE(has(name)) << name;
+  EXPECT_FALSE(has("Physics.Signals.Input"));  // the bases themselves are not signal types
+}
+
+TEST(SignalCatalogue, DocumentSaysWhatTheConverterDoes) {
+  const std::vector<cat::SignalType> types = bundle_types();
+  const openplx::testing::ScratchDir dir;
+  std::vector<cat::FixtureInfo> fixtures;
+  std::vector<cat::Row> rows;
+  std::set<std::string> attached;
+  int n = 0;
+  for (const cat::SourceFixture& fixture : cat::source_fixtures()) {
+    SCOPED_TRACE(fixture.kind);
+    const std::string name = "f" + std::to_string(n++);
+    const cat::Conversion alone = cat::convert(dir.path(), name, fixture.text);
+    ASSERT_EQ(alone.status, 0) << (alone.errors.empty() ? "" : alone.errors.front());
+    const Evaluated e = evaluate(dir / (name + ".openplx"), fixture, types);
+    ASSERT_FALSE(e.source_type.empty()) << "no source at " << fixture.source;
+    fixtures.push_back({fixture.kind, e.source_type, fixture.source});
+    for (const cat::SignalType* t : e.accepting) {
+      const cat::Conversion c = cat::convert(dir.path(), name + "_" + std::to_string(rows.size()),
+                                             fixture.text + probe_lines(*t, fixture.source));
+      rows.push_back({t->name, fixture.kind, cat::outcome_of(c, "probe")});
+      attached.insert(t->name);
+    }
+  }
+  for (const cat::SignalType& t : types) {
+    if (attached.count(t.name)) continue;
+    std::string accepts;
+    for (const std::string& a : t.accepts) accepts += (accepts.empty() ? "`" : " or `") + a + "`";
+    rows.push_back({t.name,
+                    "",
+                    {cat::Outcome::Kind::Error,
+                     accepts.empty() ? "it names no source" : "no fixture's source is a " + accepts}});
+  }
+  const std::string document = cat::catalogue_document(types, fixtures, rows);
+  const char* update = std::getenv("OPENPLX_UPDATE_CATALOGUE");
+  if (update && std::string(update) == "1") {
+    std::ofstream(kDocument, std::ios::binary) << document;
+    std::cout << "wrote " << kDocument.string() << '\n';
+    return;
+  }
+  const std::string checked_in = cat::detail::read_file(kDocument);
+  EXPECT_TRUE(checked_in == document) << kDocument.string() << " differs from what the converter does; "
+                                      << first_difference(checked_in, document)
+                                      << "\nIf the change is intended, regenerate it: " << cat::kRegenerate;
+}
+
+}  // namespace
