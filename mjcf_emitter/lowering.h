@@ -215,9 +215,10 @@ class Lowering {
   void bind_coupling(SignalBinding& b, std::string_view stem, int k);
   bool bind_drive_part(SignalBinding& b, std::string_view stem, int k);
   bool bind_shaft(SignalBinding& b, std::string_view stem, int shaft);
-  void bind_mate(SignalBinding& b, std::string_view stem, int m);
+  void bind_mate(SignalBinding& b, std::string_view stem, const sn::Signal& s);
   void bind_body(SignalBinding& b, std::string_view stem, int n);
-  void bind_connector(SignalBinding& b, std::string_view stem, int c);
+  void bind_body_torque(SignalBinding& b, int n, std::string body);
+  void bind_connector(SignalBinding& b, std::string_view stem, const sn::Signal& s);
   std::string site_for(int c);
   std::pair<Element*, sn::Transform> connector_mount(int c);
   void add_sensor(SignalBinding& b);

@@ -188,6 +188,28 @@ std::string_view to_string(Quantity quantity) {
       return "site_linear_velocity";
     case Quantity::SiteAngularVelocity:
       return "site_angular_velocity";
+    case Quantity::SiteLinearAcceleration:
+      return "site_linear_acceleration";
+    case Quantity::SiteAngularAcceleration:
+      return "site_angular_acceleration";
+    case Quantity::SiteRelativePosition:
+      return "site_relative_position";
+    case Quantity::SiteRelativeRPY:
+      return "site_relative_rpy";
+    case Quantity::SiteRelativeLinearVelocity:
+      return "site_relative_linear_velocity";
+    case Quantity::SiteRelativeAngularVelocity:
+      return "site_relative_angular_velocity";
+    case Quantity::SiteRelativeLinearAcceleration:
+      return "site_relative_linear_acceleration";
+    case Quantity::SiteRelativeAngularAcceleration:
+      return "site_relative_angular_acceleration";
+    case Quantity::MateForceInFrame:
+      return "mate_force_in_frame";
+    case Quantity::MateTorqueInFrame:
+      return "mate_torque_in_frame";
+    case Quantity::BodyTorque:
+      return "body_torque";
     case Quantity::MateForce:
       return "mate_force";
     case Quantity::MateTorque:

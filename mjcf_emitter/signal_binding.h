@@ -82,21 +82,46 @@ enum class Quantity {
                       // -(stiffness (length - lengthspring) + damping velocity)
   BodyPosition,       // Body: d->xpos (the body frame's origin, world)
   BodyRPY,            // Body: d->xquat as roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll) (static xyz)
-  BodyLinearVelocity,      // Body: the body frame origin's world linear velocity
-  BodyAngularVelocity,     // Body: world angular velocity
-  BodyLinearAcceleration,  // Body: world linear acceleration of the body frame origin
-  SitePosition,            // Site (a mate connector): d->site_xpos
-  SiteRPY,                 // Site: orientation as roll, pitch, yaw
-  SiteLinearVelocity,      // Site: world linear velocity of the site origin
-  SiteAngularVelocity,     // Site: world angular velocity
-  MateForce,     // Site at the MuJoCo child's connector of a tree mate: the force connectors[0]'s side
-                 // exerts on connectors[1]'s side, world axes. MuJoCo gives the parent's force on the
-                 // child subtree (the `force` sensor, site axes); `sign` is -1 when the child holds
-                 // connectors[0]
-  MateTorque,    // the same, torque about the connector origin
-  Composite,     // Robotics RobotInput/RobotOutput: `names` are the OpenPLX paths of its parts, in order; an
-                 // input takes one value per part (each a scalar input), an output gives its parts' values
-                 // one after another (Vector)
+  BodyLinearVelocity,       // Body: the body frame origin's world linear velocity
+  BodyAngularVelocity,      // Body: world angular velocity
+  BodyLinearAcceleration,   // Body: the body frame origin's coordinate acceleration d2p/dt2, world axes (0 at
+                            // rest, gravity in free fall): MuJoCo's framelinacc (proper acceleration, what an
+                            // accelerometer reads; needs cacc: mj_rnePostConstraint) plus m->opt.gravity
+                            // (none when gravity is disabled). Of the state the last step started from
+  SitePosition,             // Site (a mate connector): d->site_xpos
+  SiteRPY,                  // Site: orientation as roll, pitch, yaw
+  SiteLinearVelocity,       // Site: world linear velocity of the site origin
+  SiteAngularVelocity,      // Site: world angular velocity
+  SiteLinearAcceleration,   // Site: the site origin's coordinate acceleration, world axes, as
+                            // BodyLinearAcceleration (framelinacc + gravity)
+  SiteAngularAcceleration,  // Site: world angular acceleration (frameangacc, from cacc)
+  // Relative to a reference connector (`relative_to`): names {site, reference site}; with p, R, v, w, a, al
+  // the site's position, rotation (world from site), velocity, angular velocity, coordinate acceleration and
+  // angular acceleration (world), the reference's with subscript r, and r = p - p_r. Values are in the
+  // reference's axes; velocities and accelerations are time derivatives seen from the reference frame
+  // (MuJoCo's definition for frame sensors with reftype).
+  SiteRelativePosition,             // R_r^T r (MuJoCo framepos with reftype="site")
+  SiteRelativeRPY,                  // R_r^T R as roll, pitch, yaw (framequat with reftype: q_r^-1 q)
+  SiteRelativeLinearVelocity,       // R_r^T (v - v_r - w_r x r) (framelinvel with reftype)
+  SiteRelativeAngularVelocity,      // R_r^T (w - w_r) (frameangvel with reftype)
+  SiteRelativeLinearAcceleration,   // R_r^T (a - a_r - al_r x r - 2 w_r x (v - v_r) + w_r x (w_r x r)): the
+                                    // second derivative of R_r^T r; no MuJoCo 2.2.2 sensor (framelinacc takes
+                                    // no reftype): computed from cacc like the accelerations above
+  SiteRelativeAngularAcceleration,  // R_r^T (al - al_r - w_r x w): the derivative of R_r^T (w - w_r)
+  MateForce,          // Site at the MuJoCo child's connector of a tree mate: the force connectors[0]'s side
+                      // exerts on connectors[1]'s side, world axes. MuJoCo gives the parent's force on the
+                      // child subtree (the `force` sensor, site axes); `sign` is -1 when the child holds
+                      // connectors[0]
+  MateTorque,         // the same, torque about the connector origin
+  MateForceInFrame,   // MateForce expressed in the axes of a fixed transform (Force3DOutput `relative_to`):
+                      // R^T f with R the rotation initial_vector = {w, x, y, z} (world from transform)
+  MateTorqueInFrame,  // MateTorque the same way (still about the connector origin: only axes change)
+  BodyTorque,  // Body (input, Torque3DInput): a pure torque, world axes, on the body: d->xfrc_applied[6 id +
+               // 3..5] (MuJoCo applies xfrc_applied at the body's centre of mass; a torque alone is a couple,
+               // the same about every point). Kept until written again (Vec3)
+  Composite,   // Robotics RobotInput/RobotOutput: `names` are the OpenPLX paths of its parts, in order; an
+               // input takes one value per part (each a scalar input), an output gives its parts' values
+               // one after another (Vector)
   SensorFields,  // Sensor (an IMU output's accelerometer/gyro/magnetometer sensors, one name per field):
                  // value k = sensordata[adr(names[k]) + initial_vector[k]], the field's axis (Vector)
   Broadcast,     // Control BroadcastInput: `names` its targets' paths; one value written to each (their type)

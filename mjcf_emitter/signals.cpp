@@ -43,7 +43,9 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   for (size_t k = 0; k < view_.signals.size(); ++k) {
     const sn::Signal& s = view_.signals[k];
     SignalBinding& b = out[k];
-    if ((!b.input || s.composite) && b.enabled && b.quantity == Quantity::None) {
+    // Inputs a model declares for every instance are not warned about; a torque input is the user's own.
+    const bool own_input = b.input && signal_classes_.of(s.type).stem == "Torque3D";
+    if ((!b.input || s.composite || own_input) && b.enabled && b.quantity == Quantity::None) {
       warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + b.type +
                         ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
     }
@@ -140,14 +142,14 @@ void Lowering::bind(const sn::Signal& s, SignalBinding& b) {
     case Source::Interaction:
       return bind_interaction(b, stem, s.source);
     case Source::Mate:
-      return bind_mate(b, stem, s.source);
+      return bind_mate(b, stem, s);
     case Source::Body:
       return bind_body(b, stem, s.source);
     case Source::Shaft:
       if (bind_shaft(b, stem, s.source)) return;
       break;
     case Source::Connector:
-      return bind_connector(b, stem, s.source);
+      return bind_connector(b, stem, s);
     case Source::Coupling:
       if (stem == "RelativeVelocity1D") b.unit = "rad/s";  // drivetrain parts join rotating shafts
       return bind_coupling(b, stem, s.source);
@@ -310,7 +312,8 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
   return unmapped(b, concat({"`", c.path, "`'s ", stem, " signal is not mapped yet"}));
 }
 
-void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
+void Lowering::bind_mate(SignalBinding& b, std::string_view stem, const sn::Signal& s) {
+  const int m = s.source;
   const sn::Mate& mate = view_.mates[m];
   if (auto distance = distance_mates_.find(m);
       distance != distance_mates_.end() && stem != "EnableInteraction" && stem != "InteractionEnabled") {
@@ -364,8 +367,16 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, int m) {
     if (found == child_of_mate_.end()) return unmapped(b, concat({"`", mate.path, "` was not emitted"}));
     const int child = found->second;
     const int side = vertex_of_connector(mate.connectors[1]) == child ? 1 : 0;
-    mapped(b, stem == "Force3D" ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
-           site_for(mate.connectors[side]));
+    const bool force = stem == "Force3D";
+    if (s.relative_transform) {  // its axes: a transform is a value, fixed in the world
+      const Eigen::Quaterniond q = s.relative_transform->rotation.normalized();
+      mapped(b, force ? Quantity::MateForceInFrame : Quantity::MateTorqueInFrame, MjObject::Site,
+             site_for(mate.connectors[side]));
+      b.initial_vector = {q.w(), q.x(), q.y(), q.z()};
+    } else {
+      mapped(b, force ? Quantity::MateForce : Quantity::MateTorque, MjObject::Site,
+             site_for(mate.connectors[side]));
+    }
     b.sign = side == 1 ? 1.0 : -1.0;
     return;
   }
@@ -376,8 +387,11 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
   std::string body = name(view_.nodes[n].path);  // moved into the binding that names it
   if (!body_element_.count(n)) return unmapped(b, concat({"`", view_.nodes[n].path, "` was not emitted"}));
   if (b.input) {
+    if (stem == "Torque3D") return bind_body_torque(b, n, std::move(body));
     const bool linear = stem == "LinearVelocity3D";
-    if (!linear && stem != "AngularVelocity3D") return unmapped(b, "no MuJoCo input of a body");
+    if (!linear && stem != "AngularVelocity3D") {
+      return unmapped(b, concat({"a body takes velocity and torque inputs; ", stem, " is neither"}));
+    }
     if (mocap_.count(n)) {  // starting at the body's initial velocity, in world axes
       const sn::FrameNode& node = view_.nodes[n];
       const Eigen::Matrix3d system = node.parent >= 0
@@ -402,19 +416,54 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
                      : stem == "AngularVelocity3D"              ? Quantity::BodyAngularVelocity
                      : stem == "Acceleration3D"                 ? Quantity::BodyLinearAcceleration
                                                                 : Quantity::None;
-  if (q == Quantity::None) return unmapped(b, "no MuJoCo quantity of a body matches it");
+  if (q == Quantity::None) {
+    return unmapped(b, concat({"a body's outputs are its position, RPY, velocities and linear acceleration; ",
+                               stem, " is none of them"}));
+  }
   return mapped(b, q, MjObject::Body, std::move(body));
 }
 
-void Lowering::bind_connector(SignalBinding& b, std::string_view stem, int c) {
-  const Quantity q = b.input                                      ? Quantity::None
-                     : stem == "Position3D" || stem == "Position" ? Quantity::SitePosition
-                     : stem == "RPY"                              ? Quantity::SiteRPY
-                     : stem == "LinearVelocity3D"                 ? Quantity::SiteLinearVelocity
-                     : stem == "AngularVelocity3D"                ? Quantity::SiteAngularVelocity
-                                                                  : Quantity::None;
-  if (q == Quantity::None) return unmapped(b, "no MuJoCo quantity of a mate connector matches it");
-  return mapped(b, q, MjObject::Site, site_for(c));
+void Lowering::bind_connector(SignalBinding& b, std::string_view stem, const sn::Signal& s) {
+  if (b.input) return unmapped(b, "a mate connector takes no input: MuJoCo moves its site with its body");
+  if (!s.relative_to_path.empty()) {
+    return unmapped(
+        b, concat({"its relative_to `", s.relative_to_path, "` is not a mate connector of this model"}));
+  }
+  const bool relative = s.relative_to >= 0;
+  using Q = Quantity;
+  const Q q =
+      stem == "Position3D" || stem == "Position" ? (relative ? Q::SiteRelativePosition : Q::SitePosition)
+      : stem == "RPY"                            ? (relative ? Q::SiteRelativeRPY : Q::SiteRPY)
+      : stem == "LinearVelocity3D"  ? (relative ? Q::SiteRelativeLinearVelocity : Q::SiteLinearVelocity)
+      : stem == "AngularVelocity3D" ? (relative ? Q::SiteRelativeAngularVelocity : Q::SiteAngularVelocity)
+      : stem == "Acceleration3D" ? (relative ? Q::SiteRelativeLinearAcceleration : Q::SiteLinearAcceleration)
+      : stem == "AngularAcceleration3D"
+          ? (relative ? Q::SiteRelativeAngularAcceleration : Q::SiteAngularAcceleration)
+          : Q::None;
+  if (q == Q::None) {
+    return unmapped(b, concat({"a mate connector's outputs are its position, RPY, velocities and "
+                               "accelerations; ",
+                               stem, " is none of them"}));
+  }
+  mapped(b, q, MjObject::Site, site_for(s.source));
+  if (relative) b.names.push_back(site_for(s.relative_to));
+}
+
+// A Torque3DInput on a body: a pure torque through xfrc_applied, which moves only a body with degrees of
+// freedom of its own.
+void Lowering::bind_body_torque(SignalBinding& b, int n, std::string body) {
+  const std::string& path = view_.nodes[n].path;
+  if (is_static(n)) {
+    return unmapped(
+        b,
+        concat({"`", path, "` is static (is_dynamic: false): nothing moves it, so a torque has no effect"}));
+  }
+  if (mocap_.count(n)) {
+    return unmapped(b, concat({"`", path,
+                               "` is kinematic (a MuJoCo mocap body): it moves as its velocity inputs say, "
+                               "and forces do not act on it"}));
+  }
+  mapped(b, Quantity::BodyTorque, MjObject::Body, std::move(body));
 }
 
 // A site at a mate connector, in the MuJoCo body that carries it (the world for system connectors).
@@ -440,6 +489,7 @@ void Lowering::add_sensor(SignalBinding& b) {
     const char* element;
     const char* objtype;  // frame sensors; nullptr: the element names its object by attribute
     const char* attribute;
+    bool relative = false;  // names[1] is the reference site (reftype="site")
   };
   Sensor sensor{};
   switch (b.quantity) {
@@ -459,9 +509,11 @@ void Lowering::add_sensor(SignalBinding& b) {
       sensor = {"actuatorfrc", nullptr, "actuator"};
       break;
     case Quantity::MateForce:
+    case Quantity::MateForceInFrame:
       sensor = {"force", nullptr, "site"};
       break;
     case Quantity::MateTorque:
+    case Quantity::MateTorqueInFrame:
       sensor = {"torque", nullptr, "site"};
       break;
     case Quantity::BodyPosition:
@@ -491,6 +543,24 @@ void Lowering::add_sensor(SignalBinding& b) {
     case Quantity::SiteAngularVelocity:
       sensor = {"frameangvel", "site", nullptr};
       break;
+    case Quantity::SiteLinearAcceleration:  // proper acceleration: the runtime adds gravity
+      sensor = {"framelinacc", "site", nullptr};
+      break;
+    case Quantity::SiteAngularAcceleration:
+      sensor = {"frameangacc", "site", nullptr};
+      break;
+    case Quantity::SiteRelativePosition:
+      sensor = {"framepos", "site", nullptr, true};
+      break;
+    case Quantity::SiteRelativeRPY:
+      sensor = {"framequat", "site", nullptr, true};
+      break;
+    case Quantity::SiteRelativeLinearVelocity:
+      sensor = {"framelinvel", "site", nullptr, true};
+      break;
+    case Quantity::SiteRelativeAngularVelocity:
+      sensor = {"frameangvel", "site", nullptr, true};
+      break;
     default:
       return;  // computed by the runtime
   }
@@ -498,6 +568,7 @@ void Lowering::add_sensor(SignalBinding& b) {
   e.set("name", name(b.path));
   if (sensor.objtype) {
     e.set("objtype", sensor.objtype).set("objname", b.names.front());
+    if (sensor.relative) e.set("reftype", "site").set("refname", b.names[1]);
   } else {
     e.set(sensor.attribute, b.names.front());
   }

@@ -1,5 +1,6 @@
 #include "runtime/manifest_reader.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -112,6 +113,7 @@ bool object_fits(Quantity q, MjObject o) {
     case Quantity::BodyLinearVelocity:
     case Quantity::BodyAngularVelocity:
     case Quantity::BodyLinearAcceleration:
+    case Quantity::BodyTorque:
       return o == MjObject::Body;
     case Quantity::FreeLinearVelocity:
     case Quantity::FreeAngularVelocity:
@@ -136,8 +138,18 @@ bool object_fits(Quantity q, MjObject o) {
     case Quantity::SiteRPY:
     case Quantity::SiteLinearVelocity:
     case Quantity::SiteAngularVelocity:
+    case Quantity::SiteLinearAcceleration:
+    case Quantity::SiteAngularAcceleration:
+    case Quantity::SiteRelativePosition:
+    case Quantity::SiteRelativeRPY:
+    case Quantity::SiteRelativeLinearVelocity:
+    case Quantity::SiteRelativeAngularVelocity:
+    case Quantity::SiteRelativeLinearAcceleration:
+    case Quantity::SiteRelativeAngularAcceleration:
     case Quantity::MateForce:
     case Quantity::MateTorque:
+    case Quantity::MateForceInFrame:
+    case Quantity::MateTorqueInFrame:
       return o == MjObject::Site;
     case Quantity::SensorFields:
       return o == MjObject::Sensor;
@@ -214,6 +226,22 @@ std::string binding_problem(const mjcf::SignalBinding& b) {
       break;
     case Quantity::SensorFields:
       if (b.initial_vector.size() != b.names.size()) return "it needs one field index per sensor";
+      break;
+    case Quantity::SiteRelativePosition:
+    case Quantity::SiteRelativeRPY:
+    case Quantity::SiteRelativeLinearVelocity:
+    case Quantity::SiteRelativeAngularVelocity:
+    case Quantity::SiteRelativeLinearAcceleration:
+    case Quantity::SiteRelativeAngularAcceleration:
+      if (b.names.size() != 2) return "a relative value names two sites: the connector's and the reference's";
+      break;
+    case Quantity::MateForceInFrame:
+    case Quantity::MateTorqueInFrame:
+      if (b.initial_vector.size() != 4 || !(Eigen::Vector4d(b.initial_vector.data()).norm() > 1e-12))
+        return "its initial_vector must hold the frame's rotation quaternion (w, x, y, z), not zero";
+      break;
+    case Quantity::BodyTorque:
+      if (!b.input || !value_is(SignalValue::Vec3)) return "a body torque is an input of three numbers";
       break;
     default:
       break;

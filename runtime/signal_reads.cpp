@@ -43,6 +43,26 @@ Eigen::Vector3d SimulationState::carried_angular(int b) const {
   return k < 0 ? Eigen::Vector3d::Zero() : kinematic_angular[static_cast<size_t>(k)];
 }
 
+FrameMotion SimulationState::motion(int id, bool body, bool acceleration) const {
+  FrameMotion f;
+  const int b = body ? id : m->site_bodyid[id];
+  const mjtNum* p = body ? d->xpos + 3 * id : d->site_xpos + 3 * id;
+  f.p = vec(p);
+  f.R = Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>>(body ? d->xmat + 9 * id
+                                                                            : d->site_xmat + 9 * id);
+  f.v = linear_velocity(m, d, b, p) + carried_linear(b, p);
+  f.w = angular_velocity(d, b) + carried_angular(b);
+  if (acceleration) {
+    // MuJoCo's own (framelinacc's) proper acceleration; adding gravity makes it d2p/dt2.
+    mjtNum res[6];
+    mj_objectAcceleration(m, d, body ? mjOBJ_XBODY : mjOBJ_SITE, id, res, 0);
+    f.alpha = vec(res);
+    f.a = vec(res + 3);
+    if (!(m->opt.disableflags & mjDSBL_GRAVITY)) f.a += vec(m->opt.gravity);
+  }
+  return f;
+}
+
 void SimulationState::read(int index, double* out, int count, ValueType wanted) const {
   const ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
@@ -70,14 +90,6 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
   const int id = s.ids.empty() ? -1 : s.ids.front();
   auto put = [&](const Eigen::Vector3d& v) {
     for (int i = 0; i < count && i < 3; ++i) out[i] = v[i];
-  };
-  auto from_sensor = [&](const char* what) {
-    if (s.sensor < 0) {
-      throw SignalError(
-          "output `" + s.info.name + "` is " + what +
-          ", which MuJoCo measures only with a sensor: enable it in the model (`enabled: true`)");
-    }
-    return d->sensordata + m->sensor_adr[s.sensor];
   };
   switch (b.quantity) {
     case Quantity::Ctrl:
@@ -166,9 +178,7 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::BodyAngularVelocity:
       put(angular_velocity(d, id) + carried_angular(id));
       return;
-    case Quantity::BodyLinearAcceleration:
-      put(vec(from_sensor("an acceleration")));
-      return;
+
     case Quantity::SitePosition:
       put(vec(d->site_xpos + 3 * id));
       return;
@@ -182,6 +192,28 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::SiteAngularVelocity:
       put(angular_velocity(d, m->site_bodyid[id]) + carried_angular(m->site_bodyid[id]));
       return;
+    case Quantity::SiteRelativePosition:
+      put(relative_position(motion(id, false, false), motion(s.ids[1], false, false)));
+      return;
+    case Quantity::SiteRelativeRPY: {
+      const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor> r =
+          relative_rotation(motion(id, false, false), motion(s.ids[1], false, false));
+      put(rpy_from_matrix(r.data()));
+      return;
+    }
+    case Quantity::SiteRelativeLinearVelocity:
+      put(relative_linear_velocity(motion(id, false, false), motion(s.ids[1], false, false)));
+      return;
+    case Quantity::SiteRelativeAngularVelocity:
+      put(relative_angular_velocity(motion(id, false, false), motion(s.ids[1], false, false)));
+      return;
+    case Quantity::BodyLinearAcceleration:
+    case Quantity::SiteLinearAcceleration:
+    case Quantity::SiteAngularAcceleration:
+    case Quantity::SiteRelativeLinearAcceleration:
+    case Quantity::SiteRelativeAngularAcceleration:
+    case Quantity::MateForceInFrame:
+    case Quantity::MateTorqueInFrame:
     case Quantity::MateForce:
     case Quantity::MateTorque: {
       // Computed after each step (request_output), in the frame of the step that produced it; the sensor

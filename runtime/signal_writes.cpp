@@ -146,6 +146,9 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
       stale = true;
       return;
     }
+    case Quantity::BodyTorque:  // a couple: the same about the centre of mass MuJoCo applies it at
+      for (int i = 0; i < 3; ++i) d->xfrc_applied[6 * id + 3 + i] = values[i];
+      return;
     default:
       throw SignalError("input `" + s.info.name + "` has no MuJoCo counterpart: " + b.reason);
   }

@@ -64,6 +64,10 @@ std::string element_problem(const mjModel* m, const mjcf::SignalBinding& b, cons
     case Quantity::FreeLinearVelocity:
     case Quantity::FreeAngularVelocity:
       return m->jnt_type[id] != mjJNT_FREE ? "joint " + name + " is not a free joint" : "";
+    case Quantity::BodyTorque:
+      return m->body_mocapid[id] >= 0 || m->body_weldid[id] == 0
+                 ? "body " + name + " has no degrees of freedom of its own (a torque moves nothing)"
+                 : "";
     case Quantity::GearRatio:
     case Quantity::GearSelect:
       return m->eq_type[id] != mjEQ_JOINT || m->eq_obj2id[id] < 0

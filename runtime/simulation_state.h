@@ -15,6 +15,7 @@
 #include "mjcf_emitter/signal_binding.h"
 #include "openplx/runtime/simulation.h"
 #include "runtime/drive_laws.h"
+#include "runtime/frame_motion.h"
 #include "runtime/mujoco_messages.h"
 
 namespace openplx::runtime {
@@ -121,6 +122,9 @@ struct SimulationState final : MessageSink {
   void read(int index, double* values, int count, ValueType wanted) const;
   Eigen::Vector3d carried_linear(int body, const mjtNum* point) const;
   Eigen::Vector3d carried_angular(int body) const;
+  // A site's (or, body = true, a body frame's) motion now, velocities with the carried motion; accelerations
+  // (coordinate, from cacc: mj_rnePostConstraint must have run) only when asked.
+  FrameMotion motion(int id, bool body, bool acceleration) const;
 };
 
 }  // namespace openplx::runtime

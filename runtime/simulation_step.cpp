@@ -162,12 +162,32 @@ void SimulationState::cache_constraint_forces() {
   }
 }
 
+namespace {
+bool computed_after_step(Quantity q) {
+  switch (q) {
+    case Quantity::MateForce:
+    case Quantity::MateTorque:
+    case Quantity::MateForceInFrame:
+    case Quantity::MateTorqueInFrame:
+    case Quantity::BodyLinearAcceleration:
+    case Quantity::SiteLinearAcceleration:
+    case Quantity::SiteAngularAcceleration:
+    case Quantity::SiteRelativeLinearAcceleration:
+    case Quantity::SiteRelativeAngularAcceleration:
+      return true;
+    default:
+      return false;
+  }
+}
+}  // namespace
+
 // Mate forces: the interaction force MuJoCo computes between the MuJoCo child and its parent
-// (cfrc_int, after mj_rnePostConstraint), at the connector's site, in world axes. Computed only for outputs a
-// caller asked for, and between mj_step2 and the next mj_step1, while the constraint forces are current.
+// (cfrc_int, after mj_rnePostConstraint), at the connector's site, in world axes (or a fixed frame's), and
+// accelerations. Computed only for outputs a caller asked for, and between mj_step2 and the next mj_step1,
+// while the constraint forces are current.
 void SimulationState::request_output(int index) {
   const mjcf::SignalBinding& b = signals[static_cast<size_t>(index)].binding;
-  const bool computed = b.quantity == Quantity::MateForce || b.quantity == Quantity::MateTorque;
+  const bool computed = computed_after_step(b.quantity);
   if (!computed ||
       std::find(post_step_signals.begin(), post_step_signals.end(), index) != post_step_signals.end())
     return;
@@ -176,18 +196,47 @@ void SimulationState::request_output(int index) {
   compute_post_step();  // the state at load (mj_forward) is consistent too
 }
 
+// Accelerations and mate forces (MuJoCo's cacc and cfrc_int) are computed only for outputs a caller asked
+// for, between mj_step2 and the next mj_step1: positions, velocities and accelerations are then all of the
+// state the step started from.
 void SimulationState::compute_post_step() {
   mj_rnePostConstraint(m, d);
   for (int index : post_step_signals) {
     const ResolvedSignal& s = signals[static_cast<size_t>(index)];
-    const int site = s.ids.front(), body = m->site_bodyid[site];
-    const Eigen::Vector3d torque = vec(d->cfrc_int + 6 * body), force = vec(d->cfrc_int + 6 * body + 3);
-    // cfrc_int's torque is about the subtree centre of mass of the body's root; move it to the site.
-    const Eigen::Vector3d lever =
-        vec(d->subtree_com + 3 * m->body_rootid[body]) - vec(d->site_xpos + 3 * site);
-    const Eigen::Vector3d value =
-        s.binding.quantity == Quantity::MateForce ? force : Eigen::Vector3d(torque + lever.cross(force));
-    post_step[static_cast<size_t>(index)] = s.binding.sign * value;
+    const Quantity q = s.binding.quantity;
+    const int id = s.ids.front();
+    Eigen::Vector3d value;
+    switch (q) {
+      case Quantity::BodyLinearAcceleration:
+        value = motion(id, true, true).a;
+        break;
+      case Quantity::SiteLinearAcceleration:
+        value = motion(id, false, true).a;
+        break;
+      case Quantity::SiteAngularAcceleration:
+        value = motion(id, false, true).alpha;
+        break;
+      case Quantity::SiteRelativeLinearAcceleration:
+        value = relative_linear_acceleration(motion(id, false, true), motion(s.ids[1], false, true));
+        break;
+      case Quantity::SiteRelativeAngularAcceleration:
+        value = relative_angular_acceleration(motion(id, false, true), motion(s.ids[1], false, true));
+        break;
+      default: {  // a mate force or torque
+        const int body = m->site_bodyid[id];
+        const Eigen::Vector3d torque = vec(d->cfrc_int + 6 * body), force = vec(d->cfrc_int + 6 * body + 3);
+        // cfrc_int's torque is about the subtree centre of mass of the body's root; move it to the site.
+        const Eigen::Vector3d lever =
+            vec(d->subtree_com + 3 * m->body_rootid[body]) - vec(d->site_xpos + 3 * id);
+        const bool is_force = q == Quantity::MateForce || q == Quantity::MateForceInFrame;
+        value = s.binding.sign * (is_force ? force : Eigen::Vector3d(torque + lever.cross(force)));
+        if (q == Quantity::MateForceInFrame || q == Quantity::MateTorqueInFrame) {
+          const std::vector<double>& r = s.binding.initial_vector;  // w, x, y, z: world from the frame
+          value = Eigen::Quaterniond(r[0], r[1], r[2], r[3]).normalized().conjugate() * value;
+        }
+      }
+    }
+    post_step[static_cast<size_t>(index)] = value;
   }
 }
 

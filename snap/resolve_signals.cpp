@@ -36,6 +36,7 @@ void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) 
     parts = {object(id, signal.input ? "target" : "source")};
   }
   if (slots[kSensors].present()) signal.sensors = in_.objects(id, slots[kSensors]).size();
+  read_relative_to(id, index);
   if (model.imu) {
     signal.imu = true;
     // A sensor without an attachment of its own sits where the IMU is attached.
@@ -59,6 +60,40 @@ void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) 
                                          own != fe::kNoObject ? own : imu_attachment);
       }
       signal.sensor_fields.push_back(std::move(f));
+    }
+  }
+}
+
+// What a signal's values are expressed relative to: a connector output's reference connector (resolved to
+// an index once every connector is known) or a force or torque output's transform.
+void SystemBuilder::read_relative_to(fe::ObjectId id, size_t index) {
+  const fe::ObjectId reference = object(id, "relative_to");
+  if (reference == fe::kNoObject) return;
+  const fe::Object& obj = ev_.graph().at(reference);
+  if (is(obj, connector_)) {
+    signal_references_.emplace_back(index, reference);
+  } else if (obj.type->qualified == "Math.AffineTransform") {
+    view_.signals[index].relative_transform = affine(reference);
+  } else {
+    view_.signals[index].relative_to_path = path_of(reference);
+  }
+}
+
+// `relative_to` connectors by index: the World singleton is the default (world values); another connector
+// outside the tree lives in the world, as a mate's does.
+void SystemBuilder::resolve_signal_references() {
+  for (const auto& [signal, reference] : signal_references_) {
+    const fe::Object& obj = ev_.graph().at(reference);
+    if (auto it = connector_of_.find(reference); it != connector_of_.end()) {
+      view_.signals[signal].relative_to = it->second;
+    } else if (obj.is_const_singleton && obj.type->qualified == "Physics3D.Interactions.World") {
+      continue;
+    } else if (obj.is_const_singleton) {
+      add_connector(reference, kWorld, false);
+      view_.connectors.back().path = obj.type->qualified;
+      view_.signals[signal].relative_to = connector_of_[reference];
+    } else {
+      view_.signals[signal].relative_to_path = path_of(reference);
     }
   }
 }

@@ -148,6 +148,7 @@ ResolvedSystem SystemBuilder::build(fe::ObjectId root) {
   for (size_t k = 0; k < view_.signals.size(); ++k) resolve_source(view_.signals[k], signal_sources_[k]);
   resolve_composites();
   resolve_sensor_attachments();
+  resolve_signal_references();
   view_.gravity = read_gravity(in_, view_.root >= 0 ? view_.nodes[view_.root].object : fe::kNoObject);
   return std::move(view_);
 }

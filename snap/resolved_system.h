@@ -202,6 +202,12 @@ struct Signal {
   double scale = 1, offset = 0;
   std::vector<int> parts;
   size_t sensors = 0;  // RobotOutput sensors (not mapped)
+  // A connector output's `relative_to`: the reference connector (index into connectors), -1 for the world
+  // (the default, Physics3D.Interactions.World); `relative_to_path` names what it is when that is neither.
+  int relative_to = -1;
+  std::string relative_to_path;
+  // Force3DOutput / Torque3DOutput `relative_to` (a Math.AffineTransform), when given.
+  std::optional<Transform> relative_transform;
   // Sensors.Signals.IMUOutput: per field, an axis (0 x, 1 y, 2 z) of one of the IMU's three-axis sensors.
   struct SensorField {
     enum class Kind { Unknown, Accelerometer, Gyroscope, Magnetometer };

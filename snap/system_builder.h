@@ -103,6 +103,8 @@ class SystemBuilder {
   // Signals, their sources, composites and sensor attachments. (resolve_signals.cpp)
   void add_signal(fe::ObjectId id, const Role::SignalModel& model);
   void resolve_sensor_attachments();
+  void resolve_signal_references();
+  void read_relative_to(fe::ObjectId id, size_t index);
   void resolve_composites();
   void resolve_source(Signal& signal, fe::ObjectId source);
   void build_source_index();
@@ -228,6 +230,7 @@ class SystemBuilder {
   fe::ModelInfo* magnetometer_ = nullptr;
   // IMU fields' sensors: (signal, field, the sensor's connector object), resolved to connector indices.
   std::vector<std::tuple<size_t, size_t, fe::ObjectId>> sensor_attachments_;
+  std::vector<std::pair<size_t, fe::ObjectId>> signal_references_;  // (signal, its relative_to connector)
   fe::ModelInfo* affine_input_ = nullptr;
   fe::ModelInfo* affine_output_ = nullptr;
   fe::ModelInfo* gear_ = nullptr;
