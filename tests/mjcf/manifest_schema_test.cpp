@@ -52,13 +52,15 @@ std::string joined(const std::vector<std::string>& errors) {
   return text;
 }
 
-// Models that reach what no sample or corpus model does: mate connector outputs, a body's acceleration, an
+// Models that reach what no sample or corpus model does: mate connector outputs (relative_to another
+// connector too), a body's acceleration, forces in a transform's axes, a body's torque input, an
 // IMU, a virtual affine input; a Distance mate, a DistanceRange and a force motor with an effort-range
 // input; a torque converter (a runtime law) and a viscous gear.
 const char kConnectorsAndSensors[] = R"(Acceleration3DOutput is Physics.Signals.Output:
     type: Physics.Signals.InputOutputType.Acceleration3D
     source is Physics3D.Bodies.RigidBody
 Puck is Physics3D.Bodies.RigidBody:
+    with Physics3D.Signals.Torque3DInputTrait
     inertia.mass: 1
     disc is Physics3D.Geometries.Box:
         size: {0.2, 0.2, 0.05}
@@ -94,6 +96,36 @@ Scene is Physics3D.System:
     mount_rate is Physics3D.Signals.MateConnector.AngularVelocity3DOutput:
         source: puck.mount
     puck_acceleration is Acceleration3DOutput:
+        source: puck
+    mount_acceleration is Physics3D.Signals.MateConnector.Acceleration3DOutput:
+        source: puck.mount
+    mount_angular_acceleration is Physics3D.Signals.MateConnector.AngularAcceleration3DOutput:
+        source: puck.mount
+    ground_from_mount is Physics3D.Signals.MateConnector.PositionOutput:
+        source: ground
+        relative_to: puck.mount
+    ground_rpy_from_mount is Physics3D.Signals.MateConnector.RPYOutput:
+        source: ground
+        relative_to: puck.mount
+    ground_velocity_from_mount is Physics3D.Signals.MateConnector.LinearVelocity3DOutput:
+        source: ground
+        relative_to: puck.mount
+    ground_rate_from_mount is Physics3D.Signals.MateConnector.AngularVelocity3DOutput:
+        source: ground
+        relative_to: puck.mount
+    ground_acceleration_from_mount is Physics3D.Signals.MateConnector.Acceleration3DOutput:
+        source: ground
+        relative_to: puck.mount
+    ground_angular_acceleration_from_mount is Physics3D.Signals.MateConnector.AngularAcceleration3DOutput:
+        source: ground
+        relative_to: puck.mount
+    turned_force is Physics3D.Signals.Force3DOutput:
+        source: hinge
+        relative_to: Math.AffineTransform.from({0, 0, 0}, Math.Quat.angle_axis(0.5, {0, 0, 1}))
+    turned_torque is Physics3D.Signals.Torque3DOutput:
+        source: hinge
+        relative_to: Math.AffineTransform.from({0, 0, 0}, Math.Quat.angle_axis(0.5, {0, 0, 1}))
+    push is Physics3D.Signals.Torque3DInput:
         source: puck
     doubled is Control.Virtual.AffineTransform1DInput:
         target: spin.target_angular_velocity_input
@@ -203,7 +235,7 @@ TEST(ManifestSchema, DocumentsExactlyTheEmittersQuantitiesEachWithMeaningAndHowT
   for (int q = static_cast<int>(mj::Quantity::None); q <= static_cast<int>(mj::Quantity::Constant); ++q)
     emitter.insert(std::string(mj::to_string(static_cast<mj::Quantity>(q))));
   EXPECT_EQ(schema_quantities(), emitter);
-  EXPECT_EQ(emitter.size(), 44u);
+  EXPECT_EQ(emitter.size(), 55u);
   for (const json& option : schema().at("$defs").at("quantity").at("oneOf")) {
     SCOPED_TRACE(option.at("const").get<std::string>());
     EXPECT_GT(option.value("description", "").size(), 20u);
