@@ -80,6 +80,9 @@ inline std::vector<SourceFixture> source_fixtures() {
       {"RigidBody (free)", rod_scene(""), "rod"},
       {"RigidBody (on a hinge)", rod_scene(hinge()), "rod"},
       {"RigidBody (kinematic)", rod_scene("", "    is_dynamic: false\n"), "rod"},
+      // The bundles give no body Torque3DInputTrait: a user's model adds it.
+      {"RigidBody (free) with Torque3DInputTrait",
+       rod_scene("", "    with Physics3D.Signals.Torque3DInputTrait\n"), "rod"},
       {"MateConnector (on a hinged body)", rod_scene(hinge()), "rod.end"},
       {"MateConnector (world)", rod_scene(hinge()), "pivot"},
       // Mates.
