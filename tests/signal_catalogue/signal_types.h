@@ -24,6 +24,7 @@ struct SignalType {
   std::string source_attribute;      // "source", "torque_converter", "targets"; "" when it has none
   std::vector<std::string> accepts;  // qualified types the attribute takes (`A or B`: both)
   bool accepts_array = false;        // `targets is Physics.Signals.Input[]`
+  bool has_relative_to = false;      // it can be measured relative to something (`relative_to`)
 };
 
 namespace detail {
@@ -97,6 +98,7 @@ inline std::vector<SignalType> bundle_signal_types(fe::Program& program) {
     SignalType t;
     t.name = model->qualified;
     t.input = is_input;
+    t.has_relative_to = detail::declaration_of(model, "relative_to") != nullptr;
     if (const fe::Entry* e = detail::attachment(program, model)) {
       t.source_attribute = std::string(e->path[0]);
       fe::ModelInfo* owner = detail::owner_of(model, e);

@@ -11,9 +11,10 @@
 namespace openplx::catalogue {
 
 struct SourceFixture {
-  std::string kind;    // the row label: what the source is
-  std::string text;    // a complete file whose last model is the scene (a Physics3D.System)
-  std::string source;  // path of the source inside the scene
+  std::string kind;         // the row label: what the source is
+  std::string text;         // a complete file whose last model is the scene (a Physics3D.System)
+  std::string source;       // path of the source inside the scene
+  std::string probe_lines;  // more lines of the probe (indented by 8), e.g. its `relative_to`
 };
 
 namespace detail {
@@ -85,8 +86,17 @@ inline std::vector<SourceFixture> source_fixtures() {
        rod_scene("", "    with Physics3D.Signals.Torque3DInputTrait\n"), "rod"},
       {"MateConnector (on a hinged body)", rod_scene(hinge()), "rod.end"},
       {"MateConnector (world)", rod_scene(hinge()), "pivot"},
+      // The same outputs seen from another connector: the hinged rod's end from the world's pivot, and the
+      // world's pivot from the moving rod's end.
+      {"MateConnector (on a hinged body), relative_to a world connector", rod_scene(hinge()), "rod.end",
+       "        relative_to: pivot\n"},
+      {"MateConnector (world), relative_to a moving connector", rod_scene(hinge()), "pivot",
+       "        relative_to: rod.end\n"},
       // Mates.
       {"Hinge", rod_scene(hinge()), "hinge"},
+      // Force and torque outputs expressed in a turned frame (other signals have no `relative_to`).
+      {"Hinge, relative_to a transform", rod_scene(hinge()), "hinge",
+       "        relative_to: Math.AffineTransform.from({0, 0, 0}, Math.Quat.angle_axis(0.5, {0, 0, 1}))\n"},
       {"Prismatic", rod_scene(prismatic()), "slide"},
       {"Cylindrical", rod_scene(joining("mate", "Physics3D.Interactions.Cylindrical")), "mate"},
       {"Ball", rod_scene(joining("mate", "Physics3D.Interactions.Ball")), "mate"},
