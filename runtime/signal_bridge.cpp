@@ -9,6 +9,7 @@
 #include "mjcf_emitter/xml.h"
 #include "runtime/manifest_reader.h"
 #include "runtime/mujoco_messages.h"
+#include "runtime/signal_conversions.h"
 #include "runtime/simulation_state.h"
 
 namespace openplx::runtime {
@@ -21,28 +22,6 @@ std::mutex registry_mutex;
 std::set<std::pair<const mjData*, std::string>>& registry() {
   static std::set<std::pair<const mjData*, std::string>> bridges;
   return bridges;
-}
-
-mjtObj object_type(mjcf::MjObject object) {
-  switch (object) {
-    case mjcf::MjObject::Actuator:
-      return mjOBJ_ACTUATOR;
-    case mjcf::MjObject::Joint:
-      return mjOBJ_JOINT;
-    case mjcf::MjObject::Body:
-      return mjOBJ_BODY;
-    case mjcf::MjObject::Site:
-      return mjOBJ_SITE;
-    case mjcf::MjObject::Equality:
-      return mjOBJ_EQUALITY;
-    case mjcf::MjObject::Tendon:
-      return mjOBJ_TENDON;
-    case mjcf::MjObject::Sensor:
-      return mjOBJ_SENSOR;
-    case mjcf::MjObject::None:
-      break;
-  }
-  return mjOBJ_UNKNOWN;
 }
 
 bool composed(mjcf::Quantity q) {
