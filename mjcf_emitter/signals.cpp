@@ -43,9 +43,9 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   for (size_t k = 0; k < view_.signals.size(); ++k) {
     const sn::Signal& s = view_.signals[k];
     SignalBinding& b = out[k];
-    // Inputs a model declares for every instance are not warned about; a torque input is the user's own.
-    const bool own_input = b.input && signal_classes_.of(s.type).stem == "Torque3D";
-    if ((!b.input || s.composite || own_input) && b.enabled && b.quantity == Quantity::None) {
+    // Inputs a bundle model declares on every instance (a body's velocity inputs) are not warned about;
+    // an input the user declared is theirs, and dropping it silently would hide it.
+    if ((!b.input || s.composite || s.user_declared) && b.enabled && b.quantity == Quantity::None) {
       warn(s.where, std::string(b.input ? "input" : "output") + " `" + s.path + "` (" + b.type +
                         ") has no MuJoCo counterpart: " + b.reason + "; it was left out");
     }
@@ -301,8 +301,12 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
     b.initial_vector = {c.torque_capacity};
     return;
   }
-  if (c.automatic && stem.ends_with("Duration")) {  // which one: the attribute's name says
-    const bool disengage = b.path.find(".disengagement_duration_") != std::string::npos;
+  if (c.automatic && stem.ends_with("Duration")) {
+    // Which one: the signal's type says (DriveTrain's AutomaticClutch...DurationInput); a plain
+    // Physics.Signals.DurationInput (a brake's) says neither, and then the attribute's name does.
+    const bool disengage =
+        stem.ends_with("DisengagementDuration") ||
+        (stem == "Duration" && b.path.find(".disengagement_duration_") != std::string::npos);
     mapped(b, disengage ? Quantity::DisengageDuration : Quantity::EngageDuration, MjObject::Tendon,
            tendon->second);
     b.runtime = true;
@@ -317,7 +321,8 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, const sn::Sign
   const sn::Mate& mate = view_.mates[m];
   if (auto distance = distance_mates_.find(m);
       distance != distance_mates_.end() && stem != "EnableInteraction" && stem != "InteractionEnabled") {
-    if (stem == "Position1D" && b.path.find(".target_distance_") != std::string::npos) {
+    // Any position input sets the target distance; the mate's own target output reads it back.
+    if (stem == "Position1D" && (b.input || b.path.find(".target_distance_output") != std::string::npos)) {
       mapped(b, Quantity::DistanceTarget, MjObject::Equality, distance->second);
       b.initial = mate.target_distance;
       return;

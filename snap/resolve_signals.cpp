@@ -4,6 +4,20 @@
 #include "snap/system_builder.h"
 
 namespace openplx::snap::detail {
+namespace {
+
+// Whether the attribute holding signal `id` was declared in a user's file rather than in a bundle model,
+// which declares some signals on every instance of it.
+bool declared_by_user(const fe::ObjectGraph& graph, fe::ObjectId id) {
+  const fe::Object& obj = graph.at(id);
+  if (obj.owner == fe::kNoObject) return true;
+  const fe::Object& owner = graph.at(obj.owner);
+  const fe::Slot* slot = owner.find(obj.name);
+  const fe::ModelInfo* declared_in = slot ? slot->declared_in() : owner.type;
+  return !(declared_in && declared_in->doc && declared_in->doc->bundle);
+}
+
+}  // namespace
 
 void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) {
   const fe::Object& obj = ev_.graph().at(id);
@@ -19,6 +33,7 @@ void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) 
   const fe::ObjectId source = model.affine_output ? fe::kNoObject : in_.object(id, slots[kSource]);
   signal_sources_.push_back(source != fe::kNoObject ? source : in_.object(id, slots[kTorqueConverter]));
   signal.where = where_of(id);
+  signal.user_declared = declared_by_user(ev_.graph(), id);
   signal.enabled = in_.boolean(id, slots[kEnabled]).value_or(signal.enabled);
   std::vector<fe::ObjectId>& parts = composite_parts_.emplace_back();
   for (size_t list : {kTargets, kJointSources, kObjectSources, kSources}) {

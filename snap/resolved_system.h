@@ -192,6 +192,9 @@ struct Signal {
   int source = -1;  // index into the list of its kind (interactions, mates, nodes, shafts, connectors)
   std::string source_path;  // the source's instance path (Other sources)
   bool enabled = true;
+  // Declared in a user's file, not by a bundle model on every instance (RigidBody's velocity inputs): an
+  // unmapped input is warned about only then.
+  bool user_declared = false;
   // A composite (Robotics.Signals.RobotInput's targets, RobotOutput's joint and object sources, Control's
   // virtual signals): its parts in order, as indices into ResolvedSystem::signals (-1: a part that is no
   // signal of the tree). Vector: one value per part; Broadcast: one value to every part; Affine: one part,
