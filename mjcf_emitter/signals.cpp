@@ -12,6 +12,25 @@ void identify(SignalBinding& b, const sn::Signal& s) {
   b.type = s.type;
   b.enabled = s.enabled;
 }
+
+// The true reason a switch-like signal (Bool, Activate, Engage) found nothing to bind to, in place of the
+// binders' general one: its source has MuJoCo elements, but the signal means nothing they can carry.
+void explain_switch(SignalBinding& b, std::string_view stem) {
+  if (b.quantity != Quantity::None) return;
+  if (!b.reason.ends_with("that carries it")) return;  // a more particular reason stands
+  if (stem == "Bool") {
+    b.reason =
+        "a plain Bool signal says nothing of what it switches (EnableInteraction and Engage signals do), so "
+        "no "
+        "MuJoCo quantity can take it";
+  } else if (stem == "Activate" || stem == "Activated") {
+    b.reason =
+        "activation is an end effector's state (a gripper's, Robotics); MuJoCo has none for this source, "
+        "whose on/off state, where MuJoCo can switch it, is EnableInteraction's";
+  } else if (stem == "Engage" || stem == "Engaged") {
+    b.reason = "only automatic clutches and brakes engage and release; this source has no engaged state";
+  }
+}
 }  // namespace
 
 // One binding per OpenPLX signal (signal_binding.h), and a MuJoCo sensor for every enabled output that
@@ -30,6 +49,7 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
       bind_imu(s, b);
     } else {
       bind(s, b);
+      explain_switch(b, signal_classes_.of(s.type).stem);
     }
   }
   // Composites after their parts.
@@ -156,6 +176,13 @@ void Lowering::bind(const sn::Signal& s, SignalBinding& b) {
     case Source::Lidar:
       return bind_lidar(b, s.source);
     case Source::Other:
+      // A steering system itself (RackAndPinion's, BellCrank's): its angle is its interaction's.
+      for (const auto& [k, elements] : steering_) {
+        const std::string& path = view_.interactions[k].path;
+        if (path.size() == s.source_path.size() + 12 && path.starts_with(s.source_path) &&
+            path.ends_with(".interaction"))
+          return bind_interaction(b, stem, k);
+      }
       break;
   }
   return unmapped(b, "its source `" +
@@ -301,6 +328,16 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
     b.initial_vector = {c.torque_capacity};
     return;
   }
+  if (stem == "Fraction" && c.automatic) {
+    return unmapped(b, concat({"`", c.path,
+                               "` is automatic: it ramps its own engagement fraction when its engage input "
+                               "switches, so the fraction can be read (FractionOutput) but not set"}));
+  }
+  if (any_of(stem, {"Engage", "Engaged"}) && !c.automatic) {
+    return unmapped(b, concat({"`", c.path,
+                               "` is manual: it has no engaged state of its own, only its engagement "
+                               "fraction (FractionInput and FractionOutput set and read it)"}));
+  }
   if (c.automatic && stem.ends_with("Duration")) {
     // Which one: the signal's type says (DriveTrain's AutomaticClutch...DurationInput); a plain
     // Physics.Signals.DurationInput (a brake's) says neither, and then the attribute's name does.
@@ -313,7 +350,7 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
     b.initial = disengage ? c.disengagement_duration : c.engagement_duration;
     return;
   }
-  return unmapped(b, concat({"`", c.path, "`'s ", stem, " signal is not mapped yet"}));
+  return unmapped(b, concat({"`", c.path, "` has no MuJoCo element that carries it"}));
 }
 
 void Lowering::bind_mate(SignalBinding& b, std::string_view stem, const sn::Signal& s) {

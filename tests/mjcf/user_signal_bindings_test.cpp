@@ -8,12 +8,14 @@
 #include <string>
 
 #include "mjcf_emitter/signal_binding.h"
+#include "tests/support/front_axle.h"
 #include "tests/support/mjcf_fixture.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
 namespace {
 
+namespace fe = openplx::frontend;
 namespace mj = openplx::mjcf;
 using Q = mj::Quantity;
 
@@ -54,7 +56,7 @@ TEST(UserSignalWarnings, AnUnmappedInputTheUserDeclaredIsWarnedAtItsLine) {
   const openplx::testing::ScratchDir dir;
   const Converted c = convert(dir, rod_scene("    hinge is Physics3D.Interactions.Hinge:\n"  // 14
                                              "        connectors: [pivot, rod.end]\n"        // 15
-                                             "    push is Physics.Signals.BoolInput:\n"     // 16
+                                             "    push is Physics.Signals.BoolInput:\n"      // 16
                                              "        source: hinge\n"));                    // 17
   ASSERT_EQ(c.status, 0) << c.errors;
   EXPECT_NE(c.errors.find(c.file + ":16:5: warning: input `push` (Physics.Signals.BoolInput) has no MuJoCo "
@@ -133,6 +135,61 @@ TEST_F(UserSignalBindings, APositionInputOnADistanceMateSetsItsTarget) {
   ASSERT_EQ(reach.names.size(), 1u);
   EXPECT_GE(mj_name2id(m, mjOBJ_EQUALITY, reach.names[0].c_str()), 0);
   mj_deleteModel(m);
+}
+
+// A RackAndPinion steering system as an angle signal's source: bound as its interaction's own angle
+// signals are (the steering-wheel angle through the linkage's polynomial).
+TEST_F(UserSignalBindings, ASteeringSystemsAngleIsItsInteractions) {
+  ASSERT_TRUE(load(openplx::testing::front_axle("        mate.spring_constant.stiffness: 40000\n", true) +
+                   "    steering is Vehicles.Steering.Kinematic.RackAndPinion:\n"
+                   "        left_suspension: left_suspension\n        right_suspension: right_suspension\n"
+                   "    wheel_in is Physics.Signals.AngleInput:\n        source: steering\n"
+                   "    wheel_out is Physics.Signals.AngleOutput:\n        source: steering\n"));
+  ASSERT_FALSE(emit("scene").empty());
+  expect_diag_containing(fe::DiagCode::MjcfUnmapped, "RackAndPinion linkage");  // its fit, steering_test's
+  const mj::SignalBinding& in = binding("wheel_in");
+  const mj::SignalBinding& own_in = binding("steering.interaction.steering_angle_input");
+  EXPECT_EQ(in.quantity, Q::EqualityTarget);
+  EXPECT_EQ(in.names, own_in.names);
+  EXPECT_EQ(in.initial_vector, own_in.initial_vector);
+  const mj::SignalBinding& out = binding("wheel_out");
+  EXPECT_EQ(out.quantity, Q::JointPosition);
+  EXPECT_EQ(out.names, binding("steering.interaction.steering_angle_output").names);
+}
+
+// Switch-like signals MuJoCo cannot carry say why: the source's meaning, not a missing element.
+TEST_F(UserSignalBindings, UnmappedSwitchesAndFractionsGiveTheRealReason) {
+  ASSERT_TRUE(
+      load("Scene is Physics3D.System:\n"
+           "    in is DriveTrain.Shaft:\n        inertia.inertia: 1\n"
+           "    out is DriveTrain.Shaft:\n        inertia.inertia: 1\n"
+           "    hand is DriveTrain.ManualClutch:\n"
+           "        connectors: [in.output, out.input]\n"
+           "        torque_capacity: 100\n        initial_engagement_fraction: 1\n"
+           "        min_relative_slip_ratio: 0.01\n"
+           "    auto is DriveTrain.AutomaticClutch:\n"
+           "        connectors: [in.output, out.input]\n"
+           "        torque_capacity: 100\n        initial_engagement_fraction: 1\n"
+           "        min_relative_slip_ratio: 0.01\n"
+           "    hand_engaged is Physics.Signals.EngagedOutput:\n        source: hand\n"
+           "    auto_fraction is Physics.Signals.FractionInput:\n        source: auto\n"
+           "    hand_flag is Physics.Signals.BoolInput:\n        source: hand\n"
+           "    hand_on is Physics.Signals.ActivateInput:\n        source: hand\n"));
+  ASSERT_FALSE(emit("scene").empty());
+  for (const char* path : {"hand_engaged", "auto_fraction", "hand_flag", "hand_on"}) {
+    SCOPED_TRACE(path);
+    EXPECT_EQ(binding(path).quantity, Q::None);
+    EXPECT_EQ(binding(path).reason.find("not mapped yet"), std::string::npos) << binding(path).reason;
+    EXPECT_EQ(binding(path).reason.find("no MuJoCo element"), std::string::npos) << binding(path).reason;
+  }
+  EXPECT_NE(binding("hand_engaged").reason.find("engagement fraction"), std::string::npos);
+  EXPECT_NE(binding("auto_fraction").reason.find("ramps its own engagement fraction"), std::string::npos);
+  EXPECT_NE(binding("hand_flag").reason.find("plain Bool"), std::string::npos);
+  EXPECT_NE(binding("hand_on").reason.find("activation"), std::string::npos);
+  // Each warned at the user's declaration.
+  for (const char* name :
+       {"output `hand_engaged`", "input `auto_fraction`", "input `hand_flag`", "input `hand_on`"})
+    expect_diag_containing(fe::DiagCode::MjcfUnmapped, name);
 }
 
 }  // namespace
