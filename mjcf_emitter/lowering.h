@@ -72,6 +72,8 @@ class Lowering {
   // Bindings are filled in place (bind_signals): a binding moved costs as much as one made.
   static void unmapped(SignalBinding& b, std::string reason) {
     b.quantity = Quantity::None;
+    // Reasons quote paths; the root model's own path is empty (a bundle file converted on its own).
+    for (size_t at; (at = reason.find("``")) != std::string::npos;) reason.replace(at, 2, "the root model");
     b.reason = std::move(reason);
   }
   static void mapped(SignalBinding& b, Quantity quantity, MjObject object, std::string element) {
