@@ -386,6 +386,9 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, const sn::Sign
     b.initial = 1.0;
     return;
   }
+  if (!tree && !equalities_of_mate_.count(m)) {  // its own warning says why (e.g. no joint type here)
+    return unmapped(b, concat({"`", mate.path, "` was left out of the MJCF"}));
+  }
   if (!tree) {
     return unmapped(
         b, concat({"`", mate.path,
