@@ -13,6 +13,7 @@
 
 #include "frontend/syntax/quoted.h"
 #include "mjcf_emitter/signal_binding.h"
+#include "runtime/signal_conversions.h"
 #include "tests/support/mjcf_fixture.h"
 
 namespace {
@@ -24,37 +25,8 @@ using Q = mj::Quantity;
 
 class Signals : public openplx::testing::MjcfTest {
  protected:
-  const mj::SignalBinding& binding(const std::string& path) const {
-    for (const mj::SignalBinding& b : emitted_.signals) {
-      if (b.path == path) return b;
-    }
-    ADD_FAILURE() << "no binding for " << path;
-    static const mj::SignalBinding none;
-    return none;
-  }
-  static mjtObj mj_type(mj::MjObject object) {
-    switch (object) {
-      case mj::MjObject::Actuator:
-        return mjOBJ_ACTUATOR;
-      case mj::MjObject::Joint:
-        return mjOBJ_JOINT;
-      case mj::MjObject::Body:
-        return mjOBJ_BODY;
-      case mj::MjObject::Site:
-        return mjOBJ_SITE;
-      case mj::MjObject::Equality:
-        return mjOBJ_EQUALITY;
-      case mj::MjObject::Tendon:
-        return mjOBJ_TENDON;
-      case mj::MjObject::Sensor:
-        return mjOBJ_SENSOR;
-      case mj::MjObject::None:
-        break;
-    }
-    return mjOBJ_UNKNOWN;
-  }
   static int id(const mjModel* m, mj::MjObject object, const std::string& name) {
-    return mj_name2id(m, mj_type(object), name.c_str());
+    return mj_name2id(m, openplx::runtime::object_type(object), name.c_str());
   }
 };
 

@@ -74,17 +74,7 @@ TEST(UserSignalWarnings, APlainBodyWithItsBundleDeclaredInputsIsQuiet) {
   EXPECT_EQ(c.errors.find("input `"), std::string::npos) << c.errors;
 }
 
-class UserSignalBindings : public openplx::testing::MjcfTest {
- protected:
-  const mj::SignalBinding& binding(const std::string& path) const {
-    for (const mj::SignalBinding& b : emitted_.signals) {
-      if (b.path == path) return b;
-    }
-    ADD_FAILURE() << "no binding for " << path;
-    static const mj::SignalBinding none;
-    return none;
-  }
-};
+using UserSignalBindings = openplx::testing::MjcfTest;
 
 // The durations of an automatic clutch: the signal's type says which, not its attribute's name.
 TEST_F(UserSignalBindings, ClutchDurationsAreChosenByTheSignalsType) {

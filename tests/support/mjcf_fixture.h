@@ -40,6 +40,15 @@ class MjcfTest : public EvalTest {
     EXPECT_NE(m, nullptr) << error << "\n" << xml_;
     return m;
   }
+  // The binding the last emit made for the signal at `path` (a test failure and an empty binding if none).
+  const mjcf::SignalBinding& binding(const std::string& path) const {
+    for (const mjcf::SignalBinding& b : emitted_.signals) {
+      if (b.path == path) return b;
+    }
+    ADD_FAILURE() << "no binding for " << path;
+    static const mjcf::SignalBinding none;
+    return none;
+  }
 
   snap::ResolvedSystem view_;
   snap::SnapResult snap_;
