@@ -56,4 +56,29 @@ void DraftModel::write_inertials(const std::vector<Element*>& bodies) const {
   }
 }
 
+std::vector<double> DraftModel::mobilities(const std::vector<std::string>& joints) const {
+  std::vector<double> out(joints.size(), 0.0);
+  if (!m_) return out;
+  MuJoCoMessages messages(*mj_);
+  std::string error;
+  mjData* d = nullptr;
+  if (!messages.call(nullptr, [&] { d = mj_->makeData(m_); }, error) || !d) return out;
+  if (!messages.call(d, [&] { mj_->forward(m_, d); }, error)) {
+    mj_->deleteData(d);
+    return out;
+  }
+  std::vector<mjtNum> unit(static_cast<size_t>(m_->nv), 0.0), column(unit.size(), 0.0);
+  for (size_t k = 0; k < joints.size(); ++k) {
+    const int j = mj_->name2id(m_, mjOBJ_JOINT, joints[k].c_str());
+    if (j < 0) continue;
+    const size_t dof = static_cast<size_t>(m_->jnt_dofadr[j]);
+    std::fill(unit.begin(), unit.end(), 0.0);
+    unit[dof] = 1;
+    mj_->solveM(m_, d, column.data(), unit.data(), 1);
+    out[k] = column[dof];
+  }
+  mj_->deleteData(d);
+  return out;
+}
+
 }  // namespace openplx::mjcf

@@ -27,6 +27,7 @@ class DraftModel {
 
   const mjModel* model() const { return m_; }
   int body_id(const std::string& name) const { return mj_->name2id(m_, mjOBJ_BODY, name.c_str()); }
+  int joint_id(const std::string& name) const { return mj_->name2id(m_, mjOBJ_JOINT, name.c_str()); }
   const std::string& error() const { return error_; }  // why it did not load
   // What MuJoCo said while compiling it (kept, never written to MUJOCO_LOG.TXT).
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -34,6 +35,9 @@ class DraftModel {
   // Writes <inertial pos quat mass diaginertia> with the draft's mass properties into each body element
   // (found by its name attribute).
   void write_inertials(const std::vector<Element*>& bodies) const;
+  // Per joint (by name): (M^-1)_jj of its first degree of freedom at the initial pose, how far a unit force
+  // there accelerates it with the whole model moving along; 0 for a joint the draft lacks.
+  std::vector<double> mobilities(const std::vector<std::string>& joints) const;
 
  private:
   const MuJoCoLibrary* mj_ = nullptr;  // loaded by the first draft

@@ -73,6 +73,7 @@ Emitted Lowering::run() {
   emit_distance_mates(root);
   emit_drivetrain(root);
   emit_joint_couplings(root);
+  emit_compliant_dofs(root);
   emit_contact_pairs(root);
   emit_collision_filters(root);
   emit_actuators(root);
@@ -88,6 +89,7 @@ Emitted Lowering::run() {
     option.set("tolerance", kSolverTolerance)
         .set("noslip_iterations", kNoslipIterations)
         .set("noslip_tolerance", kNoslipTolerance);
+  collect_rigid_rows(root);
   out.laws = laws_;
   if (options_.manifest_text)
     out.manifest_json = manifest_json(options_.model_name, options_.prefix, out.signals, out.laws);

@@ -140,7 +140,8 @@ void Lowering::stiffen_equalities(Element& root) {
   std::set<const Element*> soft;
   for (const PendingSoftEquality& p : soft_equalities_) soft.insert(p.equality);
   for (const std::unique_ptr<Element>& e : equality->children()) {
-    if (soft.count(e.get())) continue;
+    const std::string* name = e->get("name");
+    if (soft.count(e.get()) || (name && compliant_equalities_.count(*name))) continue;
     e->set("solref", number(2 * options_.timestep) + " 0.5").set("solimp", rigid_solimp());
   }
 }
@@ -157,12 +158,12 @@ std::string Lowering::rigid_solimp() {
 
 // What only MuJoCo's compiler knows, from one draft compile: mesh bodies' mass properties (written as
 // explicit inertials, so the file needs no exactmeshinertia, which 3.2.5 removed), for flexible loop
-// closures, bodies' inverse-inertia estimates (dA), and with velocity motors the model's own mean inertia.
+// closures, bodies' inverse-inertia estimates (dA), and for velocity motors' stand-ins the mass matrix.
 void Lowering::finish_with_draft(Element& root) {
   std::vector<Element*> mesh_bodies, legacy_bodies;  // exact mesh volumes; MuJoCo's default (legacy) ones
   for (const auto& [node, mass] : mass_on_geoms_)
     (legacy_mesh_mass_.count(node) ? legacy_bodies : mesh_bodies).push_back(body_element_.at(node));
-  const bool references = !velocity_motors_.empty();
+  const bool servos = !velocity_servos_.empty();
   if (sink_.has_errors()) return;
   auto compile = [&](bool exact) {
     auto draft = std::make_unique<DraftModel>(root, options_.output_dir, exact);
@@ -185,12 +186,12 @@ void Lowering::finish_with_draft(Element& root) {
     if (!legacy) return;
     legacy->write_inertials(legacy_bodies);
   }
-  if (soft_equalities_.empty() && mesh_bodies.empty() && !references) return;
+  if (soft_equalities_.empty() && mesh_bodies.empty() && !servos) return;
   const std::unique_ptr<DraftModel> compiled = compile(true);
   if (!compiled) return;
   const DraftModel& draft = *compiled;
   draft.write_inertials(mesh_bodies);
-  if (references) write_mean_inertia(root, *draft.model());
+  finish_velocity_motors(draft);
   const SoftEqualityResult r = apply_soft_equalities(draft, soft_equalities_, options_.timestep,
                                                      options_.mujoco == EmitOptions::MuJoCo::V3);
   for (const std::string& e : r.unstable) {

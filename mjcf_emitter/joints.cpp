@@ -61,8 +61,8 @@ void Lowering::emit_joints(Element& body, int node, int m) {
     }
     case sn::MateType::ElasticTire: {
       // The tire on its rim: a slide along and a hinge about each of the connector's axes (z the axle), each
-      // with the wheel's stiffness and damping for that direction; a direction too stiff for the step is
-      // held rigid (tire_direction_rigid).
+      // with the wheel's stiffness and damping for that direction (a compliance row); a direction without
+      // stiffness is rigid.
       const double sign = side == 1 ? 1.0 : -1.0;
       const char* axes[3] = {".axial", ".radial_normal", ".radial_cross"};
       const Eigen::Vector3d unit[3] = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
@@ -70,15 +70,22 @@ void Lowering::emit_joints(Element& body, int node, int m) {
       for (int rotational = 0; rotational < 2; ++rotational) {
         for (int k = 0; k < 3; ++k) {
           const sn::DofCompliance& dof = mate.dofs[3 * rotational + k];
-          if (tire_direction_rigid(mate, node, dof, rotational != 0, axes[k])) continue;
+          if (!(dof.stiffness > 0)) continue;  // a rigid direction
           Element* j =
               joint(rotational ? "hinge" : "slide", std::string(rotational ? ".turn" : ".shift") + axes[k],
                     0.0, sign * (c.local.rotation * unit[k]));
-          if (dof.stiffness > 0) j->set("stiffness", dof.stiffness);
-          const double damping = dof.damping_constant  ? *dof.damping_constant
-                                 : dof.relaxation_time ? *dof.relaxation_time * dof.stiffness
-                                                       : 0.0;
-          if (damping > 0) j->set("damping", damping);
+          // AGX's compliance row (emit_compliant_dofs), not joint stiffness: MuJoCo integrates that explicitly
+          // and a tire's is far too stiff for it.
+          const double tau = dof.damping_constant  ? *dof.damping_constant / dof.stiffness
+                             : dof.relaxation_time ? *dof.relaxation_time
+                                                   : kDefaultRelaxationTime;
+          const sn::BodyProperties& body = view_.nodes[node].body;
+          compliant_dofs_.push_back(
+              {*j->get("name"), dof.stiffness, tau,
+               rotational ? body.inertia.diagonal().maxCoeff() : body.mass,
+               mate.path + (rotational ? " (rotational" : " (translational") + std::string(", ") +
+                   (axes[k] + 1) + ")"});
+          compliant_where_.push_back(mate.where);
         }
       }
       break;
@@ -114,22 +121,6 @@ bool Lowering::travel_held_rigid(const sn::Mate& mate, int node) {
 // stiffness explicitly, so it would blow up. Unknown inertia (0) is not judged.
 bool Lowering::too_stiff_for_step(double k, double inertia) const {
   return k > 0 && inertia > 0 && options_.timestep * std::sqrt(k / inertia) > 0.5;
-}
-
-// A tire direction whose spring is too stiff for explicit integration at this step (ω h > 0.5 with the
-// tire's mass, or its largest principal moment for rotations) is held rigid instead, with a warning; so is
-// one without stiffness (a rigid direction).
-bool Lowering::tire_direction_rigid(const sn::Mate& mate, int node, const sn::DofCompliance& dof,
-                                    bool rotational, const char* axis) {
-  if (!(dof.stiffness > 0)) return true;
-  const sn::BodyProperties& body = view_.nodes[node].body;
-  if (!too_stiff_for_step(dof.stiffness, rotational ? body.inertia.diagonal().maxCoeff() : body.mass))
-    return false;
-  warn(mate.where, "`" + mate.path + "`'s " + (rotational ? "rotational" : "translational") + " stiffness " +
-                       number(dof.stiffness) + (rotational ? " N m/rad" : " N/m") + " (" + (axis + 1) +
-                       ") is stiffer than MuJoCo integrates at a " + number(options_.timestep) +
-                       " s step; that direction of the tire was held rigid");
-  return true;
 }
 
 // Flexibility and dissipation of a mate's constrained degrees of freedom: tree joints are exactly rigid in

@@ -27,6 +27,9 @@ namespace sn = openplx::snap;
 
 inline constexpr int kWorldVertex = -1;
 inline constexpr double kNoEffortLimit = 1e10;     // an effort range's stand-in for "no limit"
+// AGX's constraint damping when a model gives none: a SPOOK relaxation time of 2/60 s, the value AGX's native
+// constraints start with (two steps at AGX's default 60 Hz, whatever the time step).
+inline constexpr double kDefaultRelaxationTime = 2.0 / 60.0;
 inline constexpr double kRigidImpedance = 0.9999;  // the largest solimp MuJoCo accepts: rigid constraints
 
 struct TreeEdge {
@@ -126,8 +129,6 @@ class Lowering {
   void emit_joints(Element& body, int node, int m);
   bool travel_held_rigid(const sn::Mate& mate, int node);
   bool too_stiff_for_step(double stiffness, double inertia) const;
-  bool tire_direction_rigid(const sn::Mate& mate, int node, const sn::DofCompliance& dof, bool rotational,
-                            const char* axis);
   void warn_mate_softness(const sn::Mate& mate, bool loop);
   void apply_friction(Element& joint, const sn::Mate& mate, const sn::MateFriction& friction,
                       const char* attribute);
@@ -139,7 +140,9 @@ class Lowering {
   void emit_distance_mates(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
   void finish_with_draft(Element& root);
-  static void write_mean_inertia(Element& root, const mjModel& draft);  // velocity_motors.cpp
+  void finish_velocity_motors(const DraftModel& draft);  // velocity_motors.cpp
+  void collect_rigid_rows(Element& root);                // rigid_rows.cpp
+  void emit_compliant_dofs(Element& root);               // compliant_dofs.cpp
   void stiffen_equalities(Element& root);
   std::string rigid_solref() const;
   static std::string rigid_solimp();
@@ -258,7 +261,20 @@ class Lowering {
   std::map<Element*, JointInfo> joint_info_;
   std::map<int, MassProperties> body_mass_;
   std::map<int, std::vector<int>> tree_children_;
-  std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and reference) name
+  std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and stand-in) name
+  struct VelocityServo {
+    Element* drive;     // the <velocity> stand-in
+    std::string joint;  // its joint's MuJoCo name
+  };
+  std::vector<VelocityServo> velocity_servos_;  // finish_velocity_motors sets their kv
+  struct CompliantDof {
+    std::string joint;
+    double stiffness, relaxation_time, inertia;  // inertia: the mass or moment it moves (0: unknown)
+    std::string path;                            // the mate
+  };
+  std::vector<CompliantDof> compliant_dofs_;       // emit_compliant_dofs holds them
+  std::vector<fe::SourceRange> compliant_where_;  // their mates' lines
+  std::set<std::string> compliant_equalities_;  // their equalities' names (not rigid rows)
   std::map<int, std::pair<double, double>> effort_ranges_;  // motor or spring -> its effort range enabled
   std::map<int, std::string> friction_couplings_;           // clutch or brake coupling -> its tendon
   std::map<int, std::string> gear_equalities_;              // gear or gearbox -> its joint equality

@@ -137,6 +137,7 @@ const MuJoCoLibrary* mujoco_library(std::string& error) {
              find(handle, "mj_resetDataKeyframe", library.resetDataKeyframe, load_error) &&
              find(handle, "mj_name2id", library.name2id, load_error) &&
              find(handle, "mj_id2name", library.id2name, load_error) &&
+             find(handle, "mj_solveM", library.solveM, load_error) &&
              find_variable(handle, "mju_user_warning", library.user_warning, load_error) &&
              find_variable(handle, "mju_user_error", library.user_error, load_error);
   });

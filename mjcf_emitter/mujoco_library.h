@@ -29,6 +29,7 @@ struct MuJoCoLibrary {
   decltype(&mj_resetDataKeyframe) resetDataKeyframe = nullptr;
   decltype(&mj_name2id) name2id = nullptr;
   decltype(&mj_id2name) id2name = nullptr;
+  decltype(&mj_solveM) solveM = nullptr;
   // The handler variables themselves (their addresses in the library).
   decltype(&mju_user_warning) user_warning = nullptr;
   decltype(&mju_user_error) user_error = nullptr;

@@ -90,6 +90,24 @@ std::string_view to_string(SignalValue value) {
   return "real";
 }
 
+std::string_view to_string(RuntimeLaw::Kind kind) {
+  switch (kind) {
+    case RuntimeLaw::Kind::Engine:
+      return "engine";
+    case RuntimeLaw::Kind::TorqueConverter:
+      return "torque_converter";
+    case RuntimeLaw::Kind::Spring:
+      return "spring";
+    case RuntimeLaw::Kind::VelocityMotor:
+      return "velocity_motor";
+    case RuntimeLaw::Kind::Compliance:
+      return "compliance";
+    case RuntimeLaw::Kind::RigidRows:
+      return "rigid_rows";
+  }
+  return "";
+}
+
 std::string_view to_string(MjObject object) {
   switch (object) {
     case MjObject::None:
@@ -433,15 +451,16 @@ void write_binding(Cursor& out, const SignalBinding& b) {
 }
 
 void write_law(Cursor& out, const RuntimeLaw& law) {
-  out.text(law.kind == RuntimeLaw::Kind::Engine ? std::string_view("{\"kind\": \"engine\", \"path\": ")
-           : law.kind == RuntimeLaw::Kind::Spring
-               ? std::string_view("{\"kind\": \"spring\", \"path\": ")
-               : std::string_view("{\"kind\": \"torque_converter\", \"path\": "));
+  out.text("{\"kind\": \"").text(to_string(law.kind)).text("\", \"path\": ");
   out.string(law.path).text(", \"actuators\": ").strings(law.actuators);
   out.text(", \"curve_x\": ").numbers(law.curve_x).text(", \"curve_y\": ").numbers(law.curve_y);
   out.text(", \"curve2_x\": ").numbers(law.curve2_x).text(", \"curve2_y\": ").numbers(law.curve2_y);
   out.text(", \"parameter\": ").number(law.parameter);
   if (law.kind == RuntimeLaw::Kind::Spring) out.text(", \"joint_damping\": ").number(law.joint_damping);
+  if (law.kind == RuntimeLaw::Kind::Compliance || law.kind == RuntimeLaw::Kind::Spring) out.text(", \"stiffness\": ").number(law.stiffness);
+  if (!law.joints.empty()) out.text(", \"joints\": ").strings(law.joints);
+  if (!law.tendons.empty()) out.text(", \"tendons\": ").strings(law.tendons);
+  if (!law.equalities.empty()) out.text(", \"equalities\": ").strings(law.equalities);
   out.text("}");
 }
 

@@ -19,9 +19,8 @@ enum class SignalValue { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a co
 // The MuJoCo element type a binding's names refer to (an mjtObj).
 enum class MjObject { None, Actuator, Joint, Body, Site, Equality, Tendon, Sensor };
 
-// A velocity motor is a tendon whose friction loss holds the motor joint to a reference turning at the
-// target (velocity_motors.cpp); when its effort band is not centred on zero, an actuator of this name adds
-// the centring force.
+// Manifests of format 1 gave a velocity motor a reference joint and, for an effort band not centred on
+// zero, an actuator of this name with the centring force. The runtime still reads them.
 inline std::string motor_bias_name(const std::string& tendon) {
   return tendon + "/bias";
 }
@@ -184,6 +183,17 @@ struct RuntimeLaw {
     // runtime makes the tendon's friction row AGX's spring row (docs/mapping.md "Springs") and adds its force
     // to the actuator's.
     Spring,
+    // actuators {motor}: a velocity motor's stand-in, a <velocity> actuator on its joint (target = ctrl,
+    // effort = forcerange, off = gear 0); the fixed tendon of the same name (the joint alone) carries the
+    // runtime's row, AGX's bounded velocity constraint; parameter = the stand-in's kv, which the runtime
+    // zeroes (its force becomes the band's centre).
+    VelocityMotor,
+    // equalities {one joint equality holding an elastic degree of freedom at 0}: AGX's compliance row with
+    // `stiffness` and SPOOK relaxation time `parameter`; the MJCF alone holds it with MuJoCo's softness.
+    Compliance,
+    // The rows AGX solves as hard constraints, exact only with the runtime: joints' limit rows (ranges),
+    // tendons' friction rows (brakes, clutches, slip limits), equalities' rows (gears, couplings).
+    RigidRows,
   };
   Kind kind = Kind::Engine;
   std::string path;                    // the OpenPLX part
@@ -191,7 +201,11 @@ struct RuntimeLaw {
   std::vector<double> curve_x, curve_y, curve2_x, curve2_y;
   double parameter = 0;
   double joint_damping = 0;  // Spring only
+  double stiffness = 0;      // Compliance, Spring (0 in manifests before it: the actuator's gain)
+  std::vector<std::string> joints, tendons, equalities;  // Compliance, RigidRows: MuJoCo names
 };
+// The manifest's name of a law kind ("engine", "spring", ...).
+std::string_view to_string(RuntimeLaw::Kind kind);
 
 // The value kind and SI unit of a signal model, from its name ("Physics.Signals.AngleOutput" -> Real, "rad").
 struct SignalKind {

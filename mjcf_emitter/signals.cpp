@@ -218,12 +218,15 @@ void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) 
   const bool range = any_of(stem, {"TorqueRange", "ForceRange"});
   const std::string element = name(i.path);
   if (auto v = velocity_motors_.find(k); v != velocity_motors_.end()) {
-    if (range) return mapped(b, Quantity::MotorForceRange, MjObject::Tendon, v->second);
+    // The stand-in servo carries the band and the target; the runtime's row makes them exact.
+    b.runtime = true;
+    if (range) return mapped(b, Quantity::ForceRange, MjObject::Actuator, v->second);
     if (effort && !b.input) return mapped(b, Quantity::MotorForce, MjObject::Tendon, v->second);
     if (any_of(stem, {"AngularVelocity1D", "LinearVelocity1D"})) {  // the target, also readable
       b.initial = actuator_ctrl_.at(k).second;
       return mapped(b, Quantity::Ctrl, MjObject::Actuator, element);
     }
+    b.runtime = false;
   } else if (auto sp = springs_.find(k); sp != springs_.end()) {
     // The runtime's spring row (springs.cpp) reads the rest and writes the force.
     if (any_of(stem, {"Angle", "Position1D"})) {  // the rest, also readable
@@ -257,12 +260,7 @@ void Lowering::bind_enabled(SignalBinding& b, int k) {
   const sn::Interaction1D& i = view_.interactions[k];
   b.initial = i.enabled ? 1.0 : 0.0;
   if (auto e = effort_ranges_.find(k); e != effort_ranges_.end()) {
-    auto v = velocity_motors_.find(k);
-    if (v != velocity_motors_.end()) {
-      mapped(b, Quantity::InteractionEnabled, MjObject::Tendon, v->second);
-    } else {
-      mapped(b, Quantity::InteractionEnabled, MjObject::Actuator, name(i.path));
-    }
+    mapped(b, Quantity::InteractionEnabled, MjObject::Actuator, name(i.path));
     std::tie(b.low, b.high) = e->second;
     return;
   }

@@ -11,14 +11,6 @@
 
 namespace openplx::mjcf {
 
-namespace {
-
-// AGX's constraint damping when the model gives none: a SPOOK relaxation time of 2/60 s, the value AGX's
-// native constraints start with (two steps at AGX's default 60 Hz, whatever the time step).
-constexpr double kDefaultRelaxationTime = 2.0 / 60.0;
-
-}  // namespace
-
 // The MJCF stand-in: its own rest (the actuator's control) and effort limits, f = k (rest - q) - b qdot
 // clamped to [min, max]. An unlimited spring's damping joins that force while explicit Euler keeps it stable
 // (b h below the inertia driven), else it goes to the joint, where Euler integrates it implicitly. A limited
@@ -58,6 +50,7 @@ void Lowering::emit_spring(Element& root, Element& actuators, const sn::Interact
   law.path = i.path;
   law.actuators = {spring};
   law.parameter = spring_relaxation_time(i, k);
+  law.stiffness = k;
   law.joint_damping = clamped_damping ? 0.0 : b;
   laws_.push_back(std::move(law));
 }

@@ -15,12 +15,13 @@ enum Choice {
   HardLimits,  // solreflimit 2h: joint and tendon ranges (actuators)
   FrictionRows,     // solreffriction 2h: velocity motors, clutches, brakes, slip limits (velocity_motors,
                     // drive_parts, drivetrain)
-  References,       // <velocity kv = inertia / h>: a velocity motor's reference follows in one step
+  References,       // <velocity kv>: a velocity motor's stand-in servo, stable at h (velocity_motors.cpp)
   Gains,            // <general> with a velocity term: springs' and dampers' damping capped below the inertia
                     // per step, distance motors' gain 0.5 / (inverse mass h) (springs, actuators)
   ExplicitSprings,  // joint or tendon stiffness kept because ω h <= 0.5 at h (else held rigid: joints,
                     // drive_parts)
-  SpringRows,       // the runtime's spring rows, with SPOOK parameters computed from h (runtime/spring_rows)
+  SpringRows,       // the runtime's spring rows, with SPOOK parameters computed from h
+                    // (runtime/constraint_rows)
   kChoices
 };
 
@@ -29,7 +30,7 @@ constexpr std::array<std::pair<const char*, const char*>, kChoices> kPhrases = {
     {"equality constraints", "solref 2h, softness bounded for h"},
     {"hard limits", "solreflimit 2h"},
     {"friction-row drives", "solreffriction 2h"},
-    {"velocity-motor references", "kv = inertia / h"},
+    {"velocity-motor stand-ins", "kv = 1 / (n h (M^-1)_jj)"},
     {"actuator damping and gains", "capped for h"},
     {"joint and tendon springs", "judged stable at h"},
     {"spring rows", "the runtime builds them for h"},

@@ -21,12 +21,10 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return span > 0 ? y[lo] + (y[hi] - y[lo]) * (at - x[lo]) / span : y[hi];
 }
 
-void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws, bool between_steps) {
+void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws) {
   for (const mjcf::RuntimeLaw& source : laws) {
-    if (source.kind == mjcf::RuntimeLaw::Kind::Spring) {
-      if (between_steps) springs_.resolve(m, source);
+    if (source.kind != mjcf::RuntimeLaw::Kind::Engine && source.kind != mjcf::RuntimeLaw::Kind::TorqueConverter)
       continue;
-    }
     Law law{source.kind,     {}, {}, source.curve_x, source.curve_y, source.curve2_x, source.curve2_y,
             source.parameter};
     for (const std::string& name : source.actuators) {
@@ -39,11 +37,9 @@ void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws, b
     if (law.kind == mjcf::RuntimeLaw::Kind::Engine) m->actuator_biasprm[law.actuators[0] * mjNBIAS + 2] = 0;
     laws_.push_back(std::move(law));
   }
-  if (between_steps) springs_.take_over_noslip(m);
 }
 
 void DriveLaws::apply(mjModel* m, mjData* d) {
-  if (!springs_.empty()) springs_.write_rows(m, d);  // springs' rows, hardened friction rows
   for (const Law& law : laws_) {
     switch (law.kind) {
       case mjcf::RuntimeLaw::Kind::Engine: {
@@ -70,8 +66,8 @@ void DriveLaws::apply(mjModel* m, mjData* d) {
         d->ctrl[law.actuators[1]] = turbine_torque;
         break;
       }
-      case mjcf::RuntimeLaw::Kind::Spring:
-        break;  // springs_
+      default:
+        break;  // constraint rows (constraint_rows.h)
     }
   }
 }

@@ -69,11 +69,17 @@ mjcf::SignalBinding binding(const json& j) {
 mjcf::RuntimeLaw law(const json& j) {
   mjcf::RuntimeLaw l;
   const std::string kind = j.at("kind").get<std::string>();
-  if (kind != "engine" && kind != "torque_converter" && kind != "spring")
-    throw std::invalid_argument("unknown law `" + kind + "`");
-  l.kind = kind == "engine"   ? mjcf::RuntimeLaw::Kind::Engine
-           : kind == "spring" ? mjcf::RuntimeLaw::Kind::Spring
-                              : mjcf::RuntimeLaw::Kind::TorqueConverter;
+  bool known = false;
+  for (mjcf::RuntimeLaw::Kind k :
+       {mjcf::RuntimeLaw::Kind::Engine, mjcf::RuntimeLaw::Kind::TorqueConverter, mjcf::RuntimeLaw::Kind::Spring,
+        mjcf::RuntimeLaw::Kind::VelocityMotor, mjcf::RuntimeLaw::Kind::Compliance,
+        mjcf::RuntimeLaw::Kind::RigidRows}) {
+    if (kind == mjcf::to_string(k)) {
+      l.kind = k;
+      known = true;
+    }
+  }
+  if (!known) throw std::invalid_argument("unknown law `" + kind + "`");
   l.path = j.at("path").get<std::string>();
   l.actuators = j.at("actuators").get<std::vector<std::string>>();
   l.curve_x = reals(j.at("curve_x"));
@@ -82,6 +88,9 @@ mjcf::RuntimeLaw law(const json& j) {
   l.curve2_y = reals(j.at("curve2_y"));
   l.parameter = real(j.at("parameter"));
   if (j.contains("joint_damping")) l.joint_damping = real(j.at("joint_damping"));
+  if (j.contains("stiffness")) l.stiffness = real(j.at("stiffness"));
+  for (auto [key, names] : {std::pair{"joints", &l.joints}, {"tendons", &l.tendons}, {"equalities", &l.equalities}})
+    if (j.contains(key)) *names = j.at(key).get<std::vector<std::string>>();
   return l;
 }
 
@@ -250,17 +259,23 @@ std::string binding_problem(const mjcf::SignalBinding& b) {
 }
 
 std::string law_problem(const mjcf::RuntimeLaw& l) {
-  const size_t wanted = l.kind == mjcf::RuntimeLaw::Kind::TorqueConverter ? 2 : 1;
+  using Kind = mjcf::RuntimeLaw::Kind;
+  const size_t wanted = l.kind == Kind::TorqueConverter                          ? 2
+                        : l.kind == Kind::Compliance || l.kind == Kind::RigidRows ? 0
+                                                                                  : 1;
   if (l.actuators.size() != wanted) {
-    return std::string(l.kind == mjcf::RuntimeLaw::Kind::Engine   ? "an engine law"
-                       : l.kind == mjcf::RuntimeLaw::Kind::Spring ? "a spring law"
-                                                                  : "a torque-converter law") +
-           " needs " + (wanted == 1 ? "one actuator" : "two actuators (pump, turbine)") + ", not " +
-           std::to_string(l.actuators.size());
+    return "a law of kind " + std::string(mjcf::to_string(l.kind)) + " needs " +
+           (wanted == 0   ? "no actuator"
+            : wanted == 1 ? "one actuator"
+                          : "two actuators (pump, turbine)") +
+           ", not " + std::to_string(l.actuators.size());
   }
-  if (l.kind == mjcf::RuntimeLaw::Kind::Spring &&
-      !(l.parameter >= 0 && l.joint_damping >= 0 && std::isfinite(l.joint_damping)))
+  if (l.kind == Kind::Spring && !(l.parameter >= 0 && l.joint_damping >= 0 && std::isfinite(l.joint_damping)))
     return "a spring's relaxation time and joint damping must be finite and not negative";
+  if (l.kind == Kind::Compliance &&
+      (l.equalities.size() != 1 || !(l.stiffness > 0) || !std::isfinite(l.stiffness) || !(l.parameter >= 0)))
+    return "a compliance needs one equality, a positive finite stiffness and a relaxation time not negative";
+  if (l.kind == Kind::VelocityMotor && !(l.parameter >= 0)) return "a velocity motor's kv must not be negative";
   for (const auto* curve : {&l.curve_x, &l.curve_y, &l.curve2_x, &l.curve2_y}) {
     if (!all_finite(*curve)) return "a curve holds a number that is not finite";
   }

@@ -9,6 +9,7 @@
 #include "mjcf_emitter/xml.h"
 #include "runtime/manifest_reader.h"
 #include "runtime/mujoco_messages.h"
+#include "runtime/row_hook.h"
 #include "runtime/signal_conversions.h"
 #include "runtime/simulation_state.h"
 
@@ -165,6 +166,10 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
     }
   }
   state->registered = true;
+  if (!state->rows.empty()) {
+    row_hook::attach(data, &state->rows);
+    state->rows_hooked = true;
+  }
   state->begin_watch();
   current_sink() = nullptr;
   return SignalBridge(std::move(state));
@@ -231,6 +236,13 @@ void SignalBridge::before_step() {
 
 void SignalBridge::after_step() {
   state_->end_watch();
+  if (state_->rows_hooked && !state_->hook_replaced_said && !row_hook::installed()) {
+    state_->hook_replaced_said = true;
+    state_->warn(state_->source +
+                 ": warning: mjcb_control was replaced after the bridge attached, so MuJoCo no longer gives "
+                 "the model's motors, springs, ranges and couplings AGX's constraint law (they fall back to "
+                 "the MJCF's own elements); set your callback before attaching, and the bridge calls it\n");
+  }
   state_->after_step();
   state_->begin_watch();  // a caller that skips before_step is still watched from here
   current_sink() = nullptr;

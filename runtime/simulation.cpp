@@ -54,6 +54,11 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   state->xml = std::move(loaded.xml);
   state->warnings = std::move(loaded.warnings);
   state->resolve(std::move(loaded.signals), loaded.laws);
+  if (!state->row_problems.empty()) {
+    std::string text;
+    for (const std::string& problem : state->row_problems) text += path + ": error: " + problem + "\n";
+    throw LoadError(text);
+  }
   state->laws.apply(state->m, state->d);
   // Outputs describe the initial state; the first step needs only mj_step2.
   if (!call_mujoco(

@@ -7,6 +7,7 @@
 #include "mjcf_emitter/xml.h"
 #include "runtime/mujoco_compat.h"
 #include "runtime/name_suggestions.h"
+#include "runtime/row_hook.h"
 #include "runtime/signal_conversions.h"
 
 namespace openplx::runtime {
@@ -93,6 +94,8 @@ std::string element_problem(const mjModel* m, const mjcf::SignalBinding& b, cons
 
 SimulationState::~SimulationState() {
   if (current_sink() == this) current_sink() = nullptr;
+  if (rows_hooked) row_hook::detach(d, &rows);
+  rows.release();  // before a Simulation deletes the model
   if (!owns) return;
   if (d) mj_deleteData(d);
   if (m) mj_deleteModel(m);
@@ -100,7 +103,9 @@ SimulationState::~SimulationState() {
 
 void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
                               const std::vector<mjcf::RuntimeLaw>& drive_laws) {
-  laws.resolve(m, drive_laws, owns);  // a Simulation steps mj_step1, laws, mj_step2; a bridge does not
+  laws.resolve(m, drive_laws);
+  row_problems = rows.resolve(m, drive_laws);
+  mismatches = row_problems;
   kinematic_linear.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
   kinematic_angular.assign(static_cast<size_t>(m->nmocap), Eigen::Vector3d::Zero());
   for (mjcf::SignalBinding& b : bindings) {
@@ -202,8 +207,10 @@ void SimulationState::resolve(std::vector<mjcf::SignalBinding> bindings,
       g.neutral = b.high != 0;
       g.gear = static_cast<int>(b.initial);
     }
-    if (b.quantity == Quantity::MotorForce)
+    if (b.quantity == Quantity::MotorForce) {  // the velocity motor's stand-in (format 1: its bias actuator)
       s.bias = mj_name2id(m, mjOBJ_ACTUATOR, mjcf::motor_bias_name(b.names.front()).c_str());
+      if (s.bias < 0) s.bias = mj_name2id(m, mjOBJ_ACTUATOR, b.names.front().c_str());
+    }
     s.binding = std::move(b);
     if (s.binding.quantity == Quantity::JointLimitForce || s.binding.quantity == Quantity::MotorForce ||
         s.binding.quantity == Quantity::EqualityForce || s.binding.quantity == Quantity::TendonLimitForce)

@@ -25,8 +25,15 @@ void SimulationState::step() {
     stale = false;
   }
   before_step();
+  // The rows mj_step1 built get AGX's law here, after the inputs and drive laws of this step (a bridge's come
+  // through mjcb_control inside the user's mj_step instead).
   if (!call_mujoco(
-          d, [this] { mj_step2(m, d); }, error))
+          d,
+          [this] {
+            rows.control(m, d);
+            mj_step2(m, d);
+          },
+          error))
     mujoco_failed(error);
   after_step();
   if (!call_mujoco(
@@ -111,7 +118,7 @@ void SimulationState::before_step() {
 }
 
 void SimulationState::after_step() {
-  laws.after_step(m, d);
+  rows.after_step(m, d);
   cache_constraint_forces();
   if (!post_step_signals.empty()) compute_post_step();
   ramp_engagements();
