@@ -26,7 +26,7 @@ namespace fe = openplx::frontend;
 namespace sn = openplx::snap;
 
 inline constexpr int kWorldVertex = -1;
-inline constexpr double kNoEffortLimit = 1e10;     // an effort range's stand-in for "no limit"
+inline constexpr double kNoEffortLimit = 1e10;  // an effort range's stand-in for "no limit"
 // AGX's constraint damping when a model gives none: a SPOOK relaxation time of 2/60 s, the value AGX's native
 // constraints start with (two steps at AGX's default 60 Hz, whatever the time step).
 inline constexpr double kDefaultRelaxationTime = 2.0 / 60.0;
@@ -272,9 +272,9 @@ class Lowering {
     double stiffness, relaxation_time, inertia;  // inertia: the mass or moment it moves (0: unknown)
     std::string path;                            // the mate
   };
-  std::vector<CompliantDof> compliant_dofs_;       // emit_compliant_dofs holds them
-  std::vector<fe::SourceRange> compliant_where_;  // their mates' lines
-  std::set<std::string> compliant_equalities_;  // their equalities' names (not rigid rows)
+  std::vector<CompliantDof> compliant_dofs_;                // emit_compliant_dofs holds them
+  std::vector<fe::SourceRange> compliant_where_;            // their mates' lines
+  std::set<std::string> compliant_equalities_;              // their equalities' names (not rigid rows)
   std::map<int, std::pair<double, double>> effort_ranges_;  // motor or spring -> its effort range enabled
   std::map<int, std::string> friction_couplings_;           // clutch or brake coupling -> its tendon
   std::map<int, std::string> gear_equalities_;              // gear or gearbox -> its joint equality

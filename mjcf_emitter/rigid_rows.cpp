@@ -1,7 +1,7 @@
-// Lowering pass, the rows AGX solves as hard constraints (docs/mapping.md "Constraint rows the runtime owns"):
-// ranges (joint limits), brakes, clutches and slip limits (tendon friction loss), gears, couplings, steering
-// columns and distance mates (joint and tendon equalities). The MJCF alone gives them MuJoCo's stiffest
-// softness; the runtime makes them exact (RuntimeLaw::RigidRows), so the manifest lists them.
+// Lowering pass, the rows AGX solves as hard constraints (docs/mapping.md "Constraint rows the runtime
+// owns"): ranges (joint limits), brakes, clutches and slip limits (tendon friction loss), gears, couplings,
+// steering columns and distance mates (joint and tendon equalities). The MJCF alone gives them MuJoCo's
+// stiffest softness; the runtime makes them exact (RuntimeLaw::RigidRows), so the manifest lists them.
 #include <vector>
 
 #include "mjcf_emitter/lowering.h"

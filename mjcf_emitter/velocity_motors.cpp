@@ -65,7 +65,8 @@ void Lowering::emit_velocity_motor(Element& root, const sn::Interaction1D& i, co
 }
 
 // The stand-in servos' gains from the draft model's mass matrix at the initial pose. Explicit Euler moves
-// the velocities by -h M^-1 K v per step (K the servos' gains): stable while h M^-1 K's eigenvalues stay below
+// the velocities by -h M^-1 K v per step (K the servos' gains): stable while h M^-1 K's eigenvalues stay
+// below
 // 2. They are real, not negative, and sum to its trace, sum_j h kv_j (M^-1)_jj; giving each of the n servos
 // in a kinematic tree kv_j = 1 / (n h (M^-1)_jj) makes that trace 1, so no eigenvalue exceeds 1 however the
 // chain couples them. A single servo then reaches its target in one step, as the motor does.

@@ -12,9 +12,10 @@ namespace {
 
 using Kind = mjcf::RuntimeLaw::Kind;
 
-// A rigid position row's SPOOK relaxation time, in steps: two, the time constant MuJoCo's stiffest rows keep
-// (refsafe) and the one the emitter gave them before the runtime owned them.
-constexpr double kRigidRelaxationSteps = 2;
+// The share of a rigid position row's error (a range passed, a gear's or coupling's offset) taken back per
+// step. Its velocity is exact every step (AGX's rigid rows: a gear at its ratio after one step); taking
+// the whole error back at once (deadbeat) would throw an assembly error's correction into one step.
+constexpr double kPositionCorrection = 0.5;
 // How near its end (rad or m) a ranged joint gets its limit row.
 constexpr double kLimitMargin = 1e-3;
 
@@ -65,8 +66,8 @@ void ConstraintRows::add_rigid(int type, int id, int actuator) {
   std::vector<Rigid>& list = actuator >= 0 ? motors_ : rigid_;
   list.push_back(r);
   // Motors first: rigid_ indices are offset by a large constant so both fit one map.
-  map[static_cast<size_t>(id)] = actuator >= 0 ? static_cast<int>(list.size()) - 1
-                                               : (1 << 24) + static_cast<int>(list.size()) - 1;
+  map[static_cast<size_t>(id)] =
+      actuator >= 0 ? static_cast<int>(list.size()) - 1 : (1 << 24) + static_cast<int>(list.size()) - 1;
 }
 
 std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws) {
@@ -79,7 +80,8 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
   release();
   if (m->opt.integrator == mjINT_RK4) {
     problems.push_back(
-        "the model integrates with RK4, which calls the control callback four times a step; the constraint rows "
+        "the model integrates with RK4, which calls the control callback four times a step; the constraint "
+        "rows "
         "AGX's law needs (velocity motors, springs, ranges, gears) are written for one solve a step: use "
         "integrator=\"Euler\" or \"implicit\"");
     return problems;
@@ -133,7 +135,8 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
         take(m->actuator_biasprm[a * mjNBIAS + 1], 0);
         take(m->actuator_biasprm[a * mjNBIAS + 2], 0);
         m->actuator_forcelimited[a] = 1;
-        take(m->tendon_frictionloss[t], 1);  // any positive value makes MuJoCo build the row; write sets its bound
+        take(m->tendon_frictionloss[t],
+             1);  // any positive value makes MuJoCo build the row; write sets its bound
         add_rigid(mjCNSTR_FRICTION_TENDON, t, a);
         break;
       }
@@ -141,13 +144,14 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
         const std::string& name = law.actuators.front();
         const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()), t = own_tendon(name, a);
         if (t < 0) {
-          problems.push_back(about + "its spring needs actuator and fixed tendon `" + name + "` on the same joint");
+          problems.push_back(about + "its spring needs actuator and fixed tendon `" + name +
+                             "` on the same joint");
           continue;
         }
         const double model_k = m->actuator_gainprm[a * mjNGAIN];
         const double k = law.stiffness > 0 ? law.stiffness : model_k;
         if (!(k > 0)) continue;  // taken over by an earlier resolve without the law's stiffness: skip
-        if (model_k > 0) {  // the stand-in not yet taken over (another mjData on this model may have)
+        if (model_k > 0) {       // the stand-in not yet taken over (another mjData on this model may have)
           const int dof = m->jnt_dofadr[m->actuator_trnid[2 * a]];
           take(m->dof_damping[dof], std::max(0.0, m->dof_damping[dof] - law.joint_damping));
           take(m->actuator_gainprm[a * mjNGAIN], 0);
@@ -193,13 +197,17 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
         }
         for (const std::string& name : law.tendons) {
           const int t = mj_name2id(m, mjOBJ_TENDON, name.c_str());
-          if (t < 0) problems.push_back(about + "no tendon `" + name + "`");
-          else add_rigid(mjCNSTR_FRICTION_TENDON, t, -1);
+          if (t < 0)
+            problems.push_back(about + "no tendon `" + name + "`");
+          else
+            add_rigid(mjCNSTR_FRICTION_TENDON, t, -1);
         }
         for (const std::string& name : law.equalities) {
           const int e = mj_name2id(m, mjOBJ_EQUALITY, name.c_str());
-          if (e < 0) problems.push_back(about + "no equality `" + name + "`");
-          else add_rigid(mjCNSTR_EQUALITY, e, -1);
+          if (e < 0)
+            problems.push_back(about + "no equality `" + name + "`");
+          else
+            add_rigid(mjCNSTR_EQUALITY, e, -1);
         }
         break;
       }
@@ -252,11 +260,10 @@ void ConstraintRows::write_rigid(const mjModel* m, mjData* d, Rigid& r, int i, i
       d->efc_frictionloss[i] = on ? std::max(0.0, (high - low) / 2) : 0.0;
     }
     aref = (target - d->efc_vel[i]) / h;
-  } else {  // a position: held at zero within a few steps, SPOOK with no compliance
-    // A limit row within its margin but short of the end lets the joint approach at up to 4 Y pos / h: it
+  } else {  // a position: its velocity error gone in the step, the position error halved each step
+    // A limit row within its margin but short of the end lets the joint approach at up to pos / (2h): it
     // reaches the end without passing it.
-    const double y = upsilon(kRigidRelaxationSteps * h, h);
-    aref = -4 * y / (h * h) * d->efc_pos[i] - (1 - y) / h * d->efc_vel[i];
+    aref = -kPositionCorrection / (h * h) * d->efc_pos[i] - d->efc_vel[i] / h;
   }
   // In the quadratic zone the solver gives J a = aref - R f; the shift cancels that with the estimate.
   d->efc_aref[i] = aref + softness * estimate;
@@ -266,6 +273,8 @@ void ConstraintRows::write_rigid(const mjModel* m, mjData* d, Rigid& r, int i, i
 
 void ConstraintRows::write(const mjModel* m, mjData* d) {
   const double h = m->opt.timestep;
+  // Noslip, switched on again after the rows were taken over, would re-solve them without their law.
+  if (m->opt.noslip_iterations > 0) const_cast<mjModel*>(m)->opt.noslip_iterations = 0;
   for (std::vector<Rigid>* list : {&motors_, &rigid_}) {
     for (Rigid& r : *list) {
       r.previous_rows = static_cast<int>(r.rows.size());
@@ -284,7 +293,8 @@ void ConstraintRows::write(const mjModel* m, mjData* d) {
     if (type == mjCNSTR_EQUALITY && compliance_of_equality_[static_cast<size_t>(id)] >= 0) {
       // SPOOK (Lacoursiere): G v+ + S lambda = -(4 Y / h) g + Y G v with S = 4 Y / (h^2 k), lambda = h f; for
       // MuJoCo's row (J a + R f = aref, v+ = v + h a): R = S, aref = -(4 Y / h^2) g - (1 - Y) / h v.
-      const Compliance& c = compliances_[static_cast<size_t>(compliance_of_equality_[static_cast<size_t>(id)])];
+      const Compliance& c =
+          compliances_[static_cast<size_t>(compliance_of_equality_[static_cast<size_t>(id)])];
       const double y = upsilon(c.relaxation_time, h);
       d->efc_aref[i] = -4 * y / (h * h) * d->efc_pos[i] - (1 - y) / h * d->efc_vel[i];
       set_row_softness(m, d, i, 4 * y / (h * h * c.stiffness));
@@ -292,7 +302,8 @@ void ConstraintRows::write(const mjModel* m, mjData* d) {
     }
     const int index = by_type_[static_cast<size_t>(type)][static_cast<size_t>(id)];
     if (index < 0) continue;
-    Rigid& r = index >= (1 << 24) ? rigid_[static_cast<size_t>(index - (1 << 24))] : motors_[static_cast<size_t>(index)];
+    Rigid& r = index >= (1 << 24) ? rigid_[static_cast<size_t>(index - (1 << 24))]
+                                  : motors_[static_cast<size_t>(index)];
     write_rigid(m, d, r, i, static_cast<int>(r.rows.size()));
   }
   // Springs: the SPOOK row about the rest (the actuator's control), its force clamped to the effort range
@@ -357,16 +368,20 @@ void ConstraintRows::after_step(const mjModel* m, mjData* d) {
       d->sensordata[m->sensor_adr[i]] = value;
     }
   }
-  // The final solve's forces are the next step's estimates; a step whose forces moved less than the shift
-  // resolves may skip the extra solves next time (owned-rows.md, exp7: the adaptive variant).
+  // The final solve's forces are the next step's estimates. The next step may skip the extra solves when
+  // this one's estimate was good (its error, R h |f - f^|, is known now) and the forces did not move since
+  // the step before (the next step's error is about R h times that move: owned-rows.md, exp7).
   double change = 0;
   for (std::vector<Rigid>* list : {&motors_, &rigid_}) {
     for (Rigid& r : *list) {
+      if (r.last_final.size() < r.force.size()) r.last_final.resize(r.force.size(), 0.0);
       for (size_t k = 0; k < r.rows.size(); ++k) {
         const int i = r.rows[k];
         if (i >= d->nefc) continue;
-        change = std::max(change, std::abs(d->efc_R[i] * (d->efc_force[i] - r.force[k])));
-        r.force[k] = d->efc_force[i];
+        const double f = d->efc_force[i];
+        const double moved = std::max(std::abs(f - r.force[k]), std::abs(f - r.last_final[k]));
+        change = std::max(change, d->efc_R[i] * moved);
+        r.force[k] = r.last_final[k] = f;
       }
     }
   }

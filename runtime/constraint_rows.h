@@ -1,11 +1,11 @@
-// AGX's constraint law inside MuJoCo's solver (docs/mapping.md "Constraint rows the runtime owns"). AGX solves
-// velocity motors, springs, compliant degrees of freedom, ranges, brakes, clutches and gears as constraint
-// rows, all together, with SPOOK compliance and damping and force bounds. MuJoCo 2.2.2 solves its rows
-// together too, but computes each row's reference acceleration (efc_aref) and softness (efc_R, efc_D) from
-// solref/solimp itself. After mj_fwdVelocity has built the rows and before the solve, the runtime overwrites
-// them with AGX's law (write), then solves up to twice more, each time shifting the rigid rows' reference by
-// their softness times the force just found (refine), so that a rigid row ends exact while Newton's method
-// still sees a well-conditioned problem. ../shared/design/owned-rows.md measured the idea.
+// AGX's constraint law inside MuJoCo's solver (docs/mapping.md "Constraint rows the runtime owns"). AGX
+// solves velocity motors, springs, compliant degrees of freedom, ranges, brakes, clutches and gears as
+// constraint rows, all together, with SPOOK compliance and damping and force bounds. MuJoCo 2.2.2 solves its
+// rows together too, but computes each row's reference acceleration (efc_aref) and softness (efc_R, efc_D)
+// from solref/solimp itself. After mj_fwdVelocity has built the rows and before the solve, the runtime
+// overwrites them with AGX's law (write), then solves up to twice more, each time shifting the rigid rows'
+// reference by their softness times the force just found (refine), so that a rigid row ends exact while
+// Newton's method still sees a well-conditioned problem. ../shared/design/owned-rows.md measured the idea.
 //
 // One ConstraintRows holds the rows of one model's laws (mjcf::RuntimeLaw) on one mjData. It is driven
 // either by the process-wide mjcb_control (row_hook.h: a bridge around the user's mj_step) or by the
@@ -57,12 +57,13 @@ class ConstraintRows {
 
  private:
   struct Rigid {
-    int type = -1, id = -1;  // mjtConstraint and object id of its rows
-    double target = 0;       // velocity target (a motor's)
-    int actuator = -1;       // a velocity motor's stand-in
-    std::vector<double> force;  // per row of the object: the force of the last solve (its estimate)
-    std::vector<int> rows;      // this step's row indices
-    int previous_rows = 0;      // how many it had the step before
+    int type = -1, id = -1;          // mjtConstraint and object id of its rows
+    double target = 0;               // velocity target (a motor's)
+    int actuator = -1;               // a velocity motor's stand-in
+    std::vector<double> force;       // per row of the object: the force of the last solve (its estimate)
+    std::vector<double> last_final;  // per row: the force the last step ended with
+    std::vector<int> rows;           // this step's row indices
+    int previous_rows = 0;           // how many it had the step before
   };
   struct Spring {
     int actuator = -1, tendon = -1, row = -1;
@@ -84,7 +85,7 @@ class ConstraintRows {
   // Whether the next step needs the extra solves: after_step found the last final solve moved the rigid rows'
   // forces by more than the shift resolves, or was not called.
   bool needs_refinement_ = true;
-  bool changed_ = false;  // this step's rows differ from the last (a new row, a new motor target)
+  bool changed_ = false;      // this step's rows differ from the last (a new row, a new motor target)
   mjModel* model_ = nullptr;  // the model whose stand-ins it took over (release)
 };
 

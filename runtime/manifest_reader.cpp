@@ -70,10 +70,9 @@ mjcf::RuntimeLaw law(const json& j) {
   mjcf::RuntimeLaw l;
   const std::string kind = j.at("kind").get<std::string>();
   bool known = false;
-  for (mjcf::RuntimeLaw::Kind k :
-       {mjcf::RuntimeLaw::Kind::Engine, mjcf::RuntimeLaw::Kind::TorqueConverter, mjcf::RuntimeLaw::Kind::Spring,
-        mjcf::RuntimeLaw::Kind::VelocityMotor, mjcf::RuntimeLaw::Kind::Compliance,
-        mjcf::RuntimeLaw::Kind::RigidRows}) {
+  for (mjcf::RuntimeLaw::Kind k : {mjcf::RuntimeLaw::Kind::Engine, mjcf::RuntimeLaw::Kind::TorqueConverter,
+                                   mjcf::RuntimeLaw::Kind::Spring, mjcf::RuntimeLaw::Kind::VelocityMotor,
+                                   mjcf::RuntimeLaw::Kind::Compliance, mjcf::RuntimeLaw::Kind::RigidRows}) {
     if (kind == mjcf::to_string(k)) {
       l.kind = k;
       known = true;
@@ -89,7 +88,8 @@ mjcf::RuntimeLaw law(const json& j) {
   l.parameter = real(j.at("parameter"));
   if (j.contains("joint_damping")) l.joint_damping = real(j.at("joint_damping"));
   if (j.contains("stiffness")) l.stiffness = real(j.at("stiffness"));
-  for (auto [key, names] : {std::pair{"joints", &l.joints}, {"tendons", &l.tendons}, {"equalities", &l.equalities}})
+  for (auto [key, names] :
+       {std::pair{"joints", &l.joints}, {"tendons", &l.tendons}, {"equalities", &l.equalities}})
     if (j.contains(key)) *names = j.at(key).get<std::vector<std::string>>();
   return l;
 }
@@ -260,11 +260,17 @@ std::string binding_problem(const mjcf::SignalBinding& b) {
 
 std::string law_problem(const mjcf::RuntimeLaw& l) {
   using Kind = mjcf::RuntimeLaw::Kind;
-  const size_t wanted = l.kind == Kind::TorqueConverter                          ? 2
+  const size_t wanted = l.kind == Kind::TorqueConverter                           ? 2
                         : l.kind == Kind::Compliance || l.kind == Kind::RigidRows ? 0
                                                                                   : 1;
   if (l.actuators.size() != wanted) {
-    return "a law of kind " + std::string(mjcf::to_string(l.kind)) + " needs " +
+    const char* law = l.kind == Kind::Engine            ? "an engine law"
+                      : l.kind == Kind::TorqueConverter ? "a torque-converter law"
+                      : l.kind == Kind::Spring          ? "a spring law"
+                      : l.kind == Kind::VelocityMotor   ? "a velocity-motor law"
+                      : l.kind == Kind::Compliance      ? "a compliance law"
+                                                        : "a rigid-rows law";
+    return std::string(law) + " needs " +
            (wanted == 0   ? "no actuator"
             : wanted == 1 ? "one actuator"
                           : "two actuators (pump, turbine)") +
@@ -275,7 +281,8 @@ std::string law_problem(const mjcf::RuntimeLaw& l) {
   if (l.kind == Kind::Compliance &&
       (l.equalities.size() != 1 || !(l.stiffness > 0) || !std::isfinite(l.stiffness) || !(l.parameter >= 0)))
     return "a compliance needs one equality, a positive finite stiffness and a relaxation time not negative";
-  if (l.kind == Kind::VelocityMotor && !(l.parameter >= 0)) return "a velocity motor's kv must not be negative";
+  if (l.kind == Kind::VelocityMotor && !(l.parameter >= 0))
+    return "a velocity motor's kv must not be negative";
   for (const auto* curve : {&l.curve_x, &l.curve_y, &l.curve2_x, &l.curve2_y}) {
     if (!all_finite(*curve)) return "a curve holds a number that is not finite";
   }

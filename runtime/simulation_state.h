@@ -90,7 +90,7 @@ struct SimulationState final : MessageSink {
   ConstraintRows rows;       // AGX's constraint law for the model's motors, springs, ranges and couplings
   bool rows_hooked = false;  // a bridge's rows, written by the process-wide mjcb_control (row_hook.h)
   bool hook_replaced_said = false;
-  std::vector<std::string> row_problems;  // laws of rows that do not fit the model (rows.resolve)
+  std::vector<std::string> row_problems;   // laws of rows that do not fit the model (rows.resolve)
   std::vector<int> post_step_signals;      // requested outputs computed after each step (no sensor)
   std::vector<Eigen::Vector3d> post_step;  // per signal: their values
 

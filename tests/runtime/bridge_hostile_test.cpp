@@ -395,9 +395,11 @@ TEST(BridgeInstability, AfterStepThrowsNamingTheJoint) {
       << bridge.warnings().back();
 }
 
-// The scene: a model emitted for 0.002 s run in a scene at a larger step. The emitter's stiff spring
-// (damped for 0.002 s) blows up; the hint names both time steps and the spring.
-TEST(BridgeInstability, SceneAtAnotherTimeStepIsNamedInTheHint) {
+// A model emitted for 0.002 s run in a scene at a larger step is said at attach. Its stiff spring (1e9 N
+// m/rad on a light rod: the MJCF's stand-in, damped for 0.002 s, blows up at 0.05 s) is the runtime's spring
+// row, computed for the step the scene takes, so it stays where its stiffness holds the rod. An instability
+// that does happen names both time steps (the hint is instability.cpp's, tested with it).
+TEST(BridgeInstability, SceneAtAnotherTimeStepIsSaidAndTheSpringRowFollowsIt) {
   const ScratchDir dir;
   std::ofstream(dir / "stiff.openplx") << kLightRod
                                        << "    spring is Physics3D.Interactions.TorsionSpring:\n"
@@ -416,21 +418,14 @@ TEST(BridgeInstability, SceneAtAnotherTimeStepIsNamedInTheHint) {
                                 "emitted for 0.002 s"),
       std::string::npos)
       << bridge.warnings()[0];
-  std::string what;
-  for (int k = 0; k < 200 && what.empty(); ++k) {
+  const int hinge = mj_name2id(model.m, mjOBJ_JOINT, "hinge");
+  ASSERT_GE(hinge, 0);
+  for (int k = 0; k < 200; ++k) {
     bridge.before_step();
     mj_step(model.m, model.d);
-    try {
-      bridge.after_step();
-    } catch (const rt::SimulationError& e) {
-      what = e.what();
-    }
+    ASSERT_NO_THROW(bridge.after_step()) << "step " << k;
   }
-  ASSERT_FALSE(what.empty()) << "the stiff spring stayed stable at 0.05 s";
-  EXPECT_NE(what.find("the time step is 0.05 s but the model was emitted for 0.002 s"), std::string::npos)
-      << what;
-  EXPECT_NE(what.find("springs (stiffness 1e+09)"), std::string::npos) << what;
-  EXPECT_NE(what.find("joint `hinge`"), std::string::npos) << what;
+  EXPECT_LT(std::abs(model.d->qpos[model.m->jnt_qposadr[hinge]]), 1e-6);
 }
 
 // The validation refuses none of the manifests the emitter writes.

@@ -208,9 +208,10 @@ TEST(CouplingConstraint, FourBarStaysClosed) {
   EXPECT_LT(worst, 1e-3);
 }
 
-// drive_train_velocity_input in plain MuJoCo: mj_resetDataKeyframe on the emitted "initial" key starts the
-// motor at its target (1 rad/s), and the hinge, tied to the shaft by a rigid joint equality, follows it in
-// one step (AGX: 1 rad/s after one step).
+// drive_train_velocity_input in plain MuJoCo, without the runtime: mj_resetDataKeyframe on the emitted
+// "initial" key starts the motor's stand-in servo at its target (1 rad/s), and the hinge follows it within
+// the servo's lag under the pendulum's weight, tau / kv (kv = I / h for a lone motor: 1.3 % after the first
+// step, 0.3 % at rest; AGX, and the runtime's row, give 1 rad/s after one step).
 TEST(MotorConstraint, TheInitialKeyframeStartsMotorsInPlainMuJoCo) {
   const openplx::testing::ScratchDir dir;
   rt::Simulation sim =
@@ -225,10 +226,12 @@ TEST(MotorConstraint, TheInitialKeyframeStartsMotorsInPlainMuJoCo) {
   mj_step(m, d);
   const int hinge = mj_name2id(m, mjOBJ_JOINT, "pendulum.hinge");
   const int shaft = mj_name2id(m, mjOBJ_JOINT, "pendulum.shaft");
-  EXPECT_GE(d->qvel[m->jnt_dofadr[hinge]], 0.99);
-  EXPECT_NEAR(d->qvel[m->jnt_dofadr[hinge]], d->qvel[m->jnt_dofadr[shaft]], 1e-3);
+  EXPECT_GE(d->qvel[m->jnt_dofadr[hinge]], 0.98);
+  if (shaft >= 0) {
+    EXPECT_NEAR(d->qvel[m->jnt_dofadr[hinge]], d->qvel[m->jnt_dofadr[shaft]], 1e-3);
+  }
   while (d->time < 0.5) mj_step(m, d);
-  EXPECT_NEAR(d->qvel[m->jnt_dofadr[hinge]], 1.0, 1e-4);
+  EXPECT_NEAR(d->qvel[m->jnt_dofadr[hinge]], 1.0, 5e-3);
   mj_deleteData(d);
   mj_deleteModel(m);
 }

@@ -87,8 +87,7 @@ TEST(RuntimeApi, BadValuesAreRejectedAndLeaveTheStateAlone) {
               "input `pendulum.motor.target_angular_velocity_input` takes a Real, not a Bool");
   }
   EXPECT_EQ(sim.data()->ctrl[motor], 1.0);
-  const int tendon = mj_name2id(sim.model(), mjOBJ_TENDON, "pendulum.motor");
-  EXPECT_EQ(sim.model()->tendon_frictionloss[tendon], 1e10);  // the range is untouched
+  EXPECT_EQ(sim.model()->actuator_forcerange[2 * motor + 1], 1e10);  // the range is untouched
   EXPECT_THROW(sim.output("pendulum.hinge.angle_output").vec3(), rt::SignalError);
   EXPECT_THROW(sim.input("pendulum.hinge.enable_interaction_input").set(false), rt::SignalError);
 }
