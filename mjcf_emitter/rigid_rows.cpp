@@ -11,7 +11,7 @@ namespace openplx::mjcf {
 void Lowering::collect_rigid_rows(Element& root) {
   RuntimeLaw law;
   law.kind = RuntimeLaw::Kind::RigidRows;
-  law.path = view_.root >= 0 ? view_.nodes[view_.root].path : std::string();
+  law.path = options_.model_name;  // the root model: its own path is empty
   if (Element* world = root.child("worldbody")) {
     std::vector<const Element*> pending{world};
     while (!pending.empty()) {

@@ -78,7 +78,10 @@ function vehicle(steering) {
   const {client} = sim;
   const position = client.output('position');
   const speed = client.input('speed'), steer = client.input('steering');
-  check(speed.exact && steer.exact, `vehicle_circle: speed and steering are exact without the runtime`);
+  // The rear motors are the runtime's rows; without it their stand-in servos lag under load, and the
+  // manifest says so.
+  check(!speed.exact && steer.exact,
+        `vehicle_circle: the client says speed needs the runtime; steering is exact without it`);
   run(sim, 1.0);  // settle on the suspensions
   const start = position.read();
   speed.set(8);

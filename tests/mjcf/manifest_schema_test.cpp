@@ -190,6 +190,31 @@ const char kShafts[] = R"(Converter is Physics3D.System:
         dissipation.viscosity: 2
 )";
 
+// An elastic wheel on a static hub: its tire's six directions are compliance laws.
+const char kElasticWheel[] = R"(Hub is Physics3D.Bodies.RigidBody:
+    is_dynamic: false
+    axle is Physics3D.Interactions.MateConnector:
+        main_axis: {0, 1, 0}
+        normal: {0, 0, 1}
+Tyre is Vehicles.Wheels.ElasticWheel:
+    rim becomes Vehicles.Wheels.Rim:
+        radius: 0.3
+        width: 0.2
+        rotational_axis: {0, 1, 0}
+        inertia.mass: 10
+    tire becomes Vehicles.Wheels.Tire:
+        outer_radius: 0.4
+        inner_radius: 0.3
+        width: 0.25
+        rotational_axis: {0, 1, 0}
+        inertia.mass: 30
+Scene is Physics3D.System:
+    hub is Hub
+    wheel is Tyre
+    axle is Physics3D.Interactions.Hinge:
+        connectors: [hub.axle, wheel.connector]
+)";
+
 std::vector<fs::path> sources(const fs::path& dir) {
   std::vector<fs::path> found;
   for (const fs::path& folder : {fs::path(OPENPLX_SAMPLES_DIR), fs::path(OPENPLX_CORPUS_DIR) / "agxunity",
@@ -202,8 +227,9 @@ std::vector<fs::path> sources(const fs::path& dir) {
   for (const auto& entry : fs::recursive_directory_iterator(fs::path(OPENPLX_VENDORED_CORPUS_DIR) / "urdf"))
     if (entry.path().extension() == ".urdf") found.push_back(entry.path());
   std::sort(found.begin(), found.end());
-  for (const auto& [name, text] : {std::pair{"connectors_and_sensors", kConnectorsAndSensors},
-                                   std::pair{"distances", kDistances}, std::pair{"shafts", kShafts}}) {
+  for (const auto& [name, text] :
+       {std::pair{"connectors_and_sensors", kConnectorsAndSensors}, std::pair{"distances", kDistances},
+        std::pair{"shafts", kShafts}, std::pair{"elastic_wheel", kElasticWheel}}) {
     found.push_back(dir / (std::string(name) + ".openplx"));
     std::ofstream(found.back()) << text;
   }
@@ -355,8 +381,9 @@ TEST(ManifestSchema, EveryManifestTheConverterWritesValidatesAndTogetherTheyUseE
   std::set<std::string> missing;
   std::set_difference(documented.begin(), documented.end(), used.begin(), used.end(),
                       std::inserter(missing, missing.end()));
+  missing.erase("motor_force_range");  // written by converters before the runtime owned motors' rows
   EXPECT_TRUE(missing.empty()) << "no model uses " << *missing.begin();
-  EXPECT_EQ(laws.size(), 3u);
+  EXPECT_EQ(laws.size(), 6u);
   EXPECT_GE(validated, 70u);
   std::cout << validated << " manifests validated (" << models.size() << " sources), " << used.size()
             << " quantity kinds used, " << runtime_signals << " signals marked runtime, laws:";

@@ -249,35 +249,35 @@ TEST_F(Mjcf, LinearRangeTestRodRestsOnTheRangeEnd) {
 }
 
 // multi_interaction (corpus README): all seven interactions of each mate are in the MJCF: two velocity
-// motors (a motor tendon each, with its reference joint), the two ranges intersected into the joint's range,
-// the two springs as two spring actuators of 100 N/m each.
+// motors (a <velocity> stand-in and a motor tendon of the joint alone each), the two ranges intersected into
+// the joint's range, the two springs as two spring actuators of 100 N/m each (and their row tendons).
 TEST_F(Mjcf, MultiInteractionExpressesAllSevenPerMate) {
   ASSERT_TRUE(load_corpus("multi_interaction.openplx")) << all_diags();
   mjModel* m = load_mujoco(emit("multi"));
   ASSERT_NE(m, nullptr);
-  ASSERT_EQ(m->njnt, 6);     // two mates, four motor references
+  ASSERT_EQ(m->njnt, 2);     // two mates: no reference joints
   EXPECT_EQ(m->ntendon, 8);  // per mate: two motor tendons, two springs' row tendons (the joint alone)
-  EXPECT_EQ(m->nu, 12);  // per mate: two references' drives, their bias forces (range inputs), two springs
-  int mates = 0;
+  EXPECT_EQ(m->nu, 8);       // per mate: two motors' stand-ins, two springs
   for (int j = 0; j < m->njnt; ++j) {
-    const std::string name = mj_id2name(m, mjOBJ_JOINT, j);
-    if (name.ends_with("/reference")) continue;
-    ++mates;
-    SCOPED_TRACE(name);
+    SCOPED_TRACE(mj_id2name(m, mjOBJ_JOINT, j));
     int springs = 0, motors = 0;
     for (int u = 0; u < m->nu; ++u) {
       springs += m->actuator_trnid[2 * u] == j && m->actuator_gainprm[u * mjNGAIN] == 100.0 &&
                  m->actuator_biasprm[u * mjNBIAS + 1] == -100.0;
+      motors += m->actuator_trnid[2 * u] == j && m->actuator_dyntype[u] == mjDYN_NONE &&
+                m->actuator_biastype[u] == mjBIAS_AFFINE && m->actuator_biasprm[u * mjNBIAS + 1] == 0 &&
+                m->actuator_biasprm[u * mjNBIAS + 2] < 0;  // <velocity>: bias -kv qdot
     }
+    int tendons = 0;
     for (int t = 0; t < m->ntendon; ++t)
-      motors += m->tendon_num[t] == 2 && m->wrap_objid[m->tendon_adr[t]] == j;
+      tendons += m->tendon_num[t] == 1 && m->wrap_objid[m->tendon_adr[t]] == j;
     EXPECT_EQ(springs, 2);
     EXPECT_EQ(motors, 2);
+    EXPECT_EQ(tendons, 4);
     EXPECT_TRUE(m->jnt_limited[j]);
     EXPECT_EQ(m->jnt_range[2 * j], -1.0);
     EXPECT_EQ(m->jnt_range[2 * j + 1], 1.0);
   }
-  EXPECT_EQ(mates, 2);
   mj_deleteModel(m);
   accept_all_diags();
 }
@@ -582,7 +582,7 @@ TEST_F(Mjcf, DriveTrainShaftFoldsIntoItsHinge) {
   ASSERT_GE(hinge, 0);
   EXPECT_DOUBLE_EQ(m->dof_armature[m->jnt_dofadr[hinge]], 1.0);  // inertia.inertia: 1.0
   EXPECT_EQ(m->neq, 0);
-  EXPECT_EQ(m->nv, 2);                                              // the hinge and the motor's reference
+  EXPECT_EQ(m->nv, 1);                                              // the hinge alone
   const int motor = mj_name2id(m, mjOBJ_TENDON, "pendulum.motor");  // the 1-D motor holds the hinge
   ASSERT_GE(motor, 0);
   EXPECT_EQ(m->wrap_objid[m->tendon_adr[motor]], hinge);

@@ -68,9 +68,9 @@ TEST_F(Signals, EveryCorpusSignalHasOneBindingWhoseElementsExistInMuJoCo) {
   accept_all_diags();
 }
 
-// torque_range: a velocity motor's inputs are its control and its effort band; written as the
-// torque_range_input asks, (-1, 1) and then (2, 3), the motor's torque (its friction row plus its bias
-// actuator) stays within the band.
+// torque_range: a velocity motor's inputs are its control and its effort band; in the MJCF alone the motor is
+// its <velocity> stand-in, whose force stays within the band as the torque_range_input writes it, (-1, 1)
+// and then (2, 3). (With the runtime the band bounds the motor's row: owned_rows_test, hard_rows_test.)
 TEST_F(Signals, TorqueRangeInputBoundsTheMotorTorque) {
   ASSERT_TRUE(load_corpus("torque_range.openplx")) << all_diags();
   const std::string path = emit("torque_range");
@@ -80,23 +80,24 @@ TEST_F(Signals, TorqueRangeInputBoundsTheMotorTorque) {
   EXPECT_EQ(speed.object, mj::MjObject::Actuator);
   EXPECT_EQ(speed.initial, 1.0);  // target_speed: 1
   EXPECT_EQ(speed.unit, "rad/s");
+  EXPECT_TRUE(speed.runtime);  // exact only with the runtime's row
   const mj::SignalBinding& range = binding("pendulum.motor.torque_range_input");
-  EXPECT_EQ(range.quantity, Q::MotorForceRange);
-  EXPECT_EQ(range.object, mj::MjObject::Tendon);
+  EXPECT_EQ(range.quantity, Q::ForceRange);
+  EXPECT_EQ(range.object, mj::MjObject::Actuator);
   EXPECT_EQ(range.value, mj::SignalValue::Vec2);
   const mj::SignalBinding& torque = binding("pendulum.motor.torque_output");
   EXPECT_EQ(torque.quantity, Q::MotorForce);
-  EXPECT_EQ(torque.names, range.names);
+  EXPECT_EQ(torque.object, mj::MjObject::Tendon);
+  EXPECT_EQ(torque.names, range.names);  // the tendon and its stand-in share the motor's name
 
   mjModel* m = load_mujoco(path);
   ASSERT_NE(m, nullptr);
   mjData* d = mj_makeData(m);
   const int a = id(m, mj::MjObject::Actuator, speed.names[0]);
   const int tendon = id(m, mj::MjObject::Tendon, torque.names[0]);
-  const int bias = mj_name2id(m, mjOBJ_ACTUATOR, mj::motor_bias_name(torque.names[0]).c_str());
-  ASSERT_GE(bias, 0);  // the range input may move the band off zero
+  EXPECT_EQ(m->tendon_frictionloss[tendon], 0);  // no row in the MJCF alone
   auto motor_torque = [&] {
-    double total = d->actuator_force[bias];
+    double total = d->actuator_force[a];
     for (int r = 0; r < d->nefc; ++r)
       if (d->efc_type[r] == mjCNSTR_FRICTION_TENDON && d->efc_id[r] == tendon) total += d->efc_force[r];
     return total;
@@ -105,11 +106,12 @@ TEST_F(Signals, TorqueRangeInputBoundsTheMotorTorque) {
   mj_step(m, d);
   // The 10 kg rod hangs 0.3 pi off vertical: holding it takes m g (L/2) sin(0.3 pi) = 39.7 N m, far above 2.
   EXPECT_GT(std::abs(motor_torque()), 2.0);
-  m->tendon_frictionloss[tendon] = 1;  // the band (-1, 1)
+  m->actuator_forcerange[2 * a] = -1;  // the band (-1, 1), as the input writes it
+  m->actuator_forcerange[2 * a + 1] = 1;
   mj_step(m, d);
   EXPECT_LE(std::abs(motor_torque()), 1.0 + 1e-9);
-  m->tendon_frictionloss[tendon] = 0.5;  // the band (2, 3)
-  m->actuator_biasprm[bias * mjNBIAS] = 2.5;
+  m->actuator_forcerange[2 * a] = 2;  // the band (2, 3)
+  m->actuator_forcerange[2 * a + 1] = 3;
   mj_step(m, d);
   EXPECT_GE(motor_torque(), 2.0 - 1e-9);
   EXPECT_LE(motor_torque(), 3.0 + 1e-9);
@@ -260,7 +262,7 @@ TEST_F(Signals, ManifestIsDeterministicAndListsEveryBinding) {
                  "\"enabled\": true, \"quantity\": \"ctrl\", \"object\": \"actuator\", \"names\": "
                  "[\"motor\"], \"sensor\": \"\", \"sign\": 1, \"initial\": 0, \"initial_vector\": [], "
                  "\"low\": 0, \"high\": 0, "
-                 "\"reason\": \"\", \"runtime\": false}"),
+                 "\"reason\": \"\", \"runtime\": true}"),
       std::string::npos)
       << first;
 }
