@@ -62,8 +62,12 @@ std::vector<double> DraftModel::mobilities(const std::vector<std::string>& joint
   MuJoCoMessages messages(*mj_);
   std::string error;
   mjData* d = nullptr;
-  if (!messages.call(nullptr, [&] { d = mj_->makeData(m_); }, error) || !d) return out;
-  if (!messages.call(d, [&] { mj_->forward(m_, d); }, error)) {
+  if (!messages.call(
+          nullptr, [&] { d = mj_->makeData(m_); }, error) ||
+      !d)
+    return out;
+  if (!messages.call(
+          d, [&] { mj_->forward(m_, d); }, error)) {
     mj_->deleteData(d);
     return out;
   }

@@ -74,17 +74,16 @@ void Lowering::emit_joints(Element& body, int node, int m) {
           Element* j =
               joint(rotational ? "hinge" : "slide", std::string(rotational ? ".turn" : ".shift") + axes[k],
                     0.0, sign * (c.local.rotation * unit[k]));
-          // AGX's compliance row (emit_compliant_dofs), not joint stiffness: MuJoCo integrates that explicitly
-          // and a tire's is far too stiff for it.
+          // AGX's compliance row (emit_compliant_dofs), not joint stiffness: MuJoCo integrates that
+          // explicitly and a tire's is far too stiff for it.
           const double tau = dof.damping_constant  ? *dof.damping_constant / dof.stiffness
                              : dof.relaxation_time ? *dof.relaxation_time
                                                    : kDefaultRelaxationTime;
           const sn::BodyProperties& body = view_.nodes[node].body;
-          compliant_dofs_.push_back(
-              {*j->get("name"), dof.stiffness, tau,
-               rotational ? body.inertia.diagonal().maxCoeff() : body.mass,
-               mate.path + (rotational ? " (rotational" : " (translational") + std::string(", ") +
-                   (axes[k] + 1) + ")"});
+          compliant_dofs_.push_back({*j->get("name"), dof.stiffness, tau,
+                                     rotational ? body.inertia.diagonal().maxCoeff() : body.mass,
+                                     mate.path + (rotational ? " (rotational" : " (translational") +
+                                         std::string(", ") + (axes[k] + 1) + ")"});
           compliant_where_.push_back(mate.where);
         }
       }

@@ -23,7 +23,8 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 
 void DriveLaws::resolve(mjModel* m, const std::vector<mjcf::RuntimeLaw>& laws) {
   for (const mjcf::RuntimeLaw& source : laws) {
-    if (source.kind != mjcf::RuntimeLaw::Kind::Engine && source.kind != mjcf::RuntimeLaw::Kind::TorqueConverter)
+    if (source.kind != mjcf::RuntimeLaw::Kind::Engine &&
+        source.kind != mjcf::RuntimeLaw::Kind::TorqueConverter)
       continue;
     Law law{source.kind,     {}, {}, source.curve_x, source.curve_y, source.curve2_x, source.curve2_y,
             source.parameter};
