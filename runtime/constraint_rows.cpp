@@ -342,19 +342,32 @@ double ConstraintRows::refine(const mjModel* m, mjData* d) {
   return change * m->opt.timestep;
 }
 
-void ConstraintRows::control(const mjModel* m, mjData* d) {
-  if (empty()) return;
+bool ConstraintRows::write_step(const mjModel* m, mjData* d) {
+  if (empty()) return false;
   write(m, d);
-  if (motors_.empty() && rigid_.empty()) return;
+  if (motors_.empty() && rigid_.empty()) return false;
   const bool refinement = needs_refinement_ || changed_;
   needs_refinement_ = true;  // after_step clears it when this step's forces stay steady
+  return refinement;
+}
+
+void ConstraintRows::control(const mjModel* m, mjData* d, ConstraintRows* const* all, size_t count) {
+  bool refinement = false;
+  for (size_t k = 0; k < count; ++k) refinement = all[k]->write_step(m, d) || refinement;
   if (!refinement) return;
-  for (int k = 0; k < kRefinements; ++k) {
+  for (int pass = 0; pass < kRefinements; ++pass) {  // one solve refines every set of rows on this data
     mj_fwdActuation(m, d);
     mj_fwdAcceleration(m, d);
     mj_fwdConstraint(m, d);
-    if (refine(m, d) < kRefineTolerance) break;
+    double change = 0;
+    for (size_t k = 0; k < count; ++k) change = std::max(change, all[k]->refine(m, d));
+    if (change < kRefineTolerance) break;
   }
+}
+
+void ConstraintRows::control(const mjModel* m, mjData* d) {
+  ConstraintRows* self = this;
+  control(m, d, &self, 1);
 }
 
 void ConstraintRows::after_step(const mjModel* m, mjData* d) {

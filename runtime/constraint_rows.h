@@ -14,6 +14,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,10 @@ class ConstraintRows {
   // After an extra solve: the rigid rows' references shifted by R (f - f_estimate); returns the largest
   // change of a rigid row's velocity this makes (R h |f - f_estimate|), in the rows' units.
   double refine(const mjModel* m, mjData* d);
-  // write, then the extra solves (mjcb_control does this for all rows on one mjData together).
+  // write, then the extra solves.
   void control(const mjModel* m, mjData* d);
+  // The same for every set of rows on one mjData (several bridges): all written, then solved together.
+  static void control(const mjModel* m, mjData* d, ConstraintRows* const* all, size_t count);
   // After the step's solve: springs' actuator force (and its actuatorfrc sensors) = the centre + the row's
   // force.
   void after_step(const mjModel* m, mjData* d);
@@ -75,6 +78,7 @@ class ConstraintRows {
     double stiffness = 0, relaxation_time = 0;
   };
   void add_rigid(int type, int id, int actuator);
+  bool write_step(const mjModel* m, mjData* d);  // write; whether this step needs the extra solves
   void write_rigid(const mjModel* m, mjData* d, Rigid& r, int row, int k);
   std::vector<Rigid> motors_, rigid_;
   std::vector<Spring> springs_;

@@ -24,7 +24,7 @@ void hook(const mjModel* m, mjData* d) {
   const std::shared_lock lock(registry_mutex);
   auto it = registry().find(d);
   if (it == registry().end()) return;
-  for (ConstraintRows* rows : it->second) rows->control(m, d);
+  ConstraintRows::control(m, d, it->second.data(), it->second.size());
 }
 
 }  // namespace
