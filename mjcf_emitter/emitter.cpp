@@ -89,6 +89,7 @@ Emitted Lowering::run() {
     option.set("tolerance", kSolverTolerance)
         .set("noslip_iterations", kNoslipIterations)
         .set("noslip_tolerance", kNoslipTolerance);
+  finish_velocity_stand_ins(root);
   collect_rigid_rows(root);
   out.laws = laws_;
   if (options_.manifest_text)

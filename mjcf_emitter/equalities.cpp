@@ -158,12 +158,12 @@ std::string Lowering::rigid_solimp() {
 
 // What only MuJoCo's compiler knows, from one draft compile: mesh bodies' mass properties (written as
 // explicit inertials, so the file needs no exactmeshinertia, which 3.2.5 removed), for flexible loop
-// closures, bodies' inverse-inertia estimates (dA), and for velocity motors' stand-ins the mass matrix.
+// closures, bodies' inverse-inertia estimates (dA), and velocity motors' servo stand-ins the mass matrix.
 void Lowering::finish_with_draft(Element& root) {
   std::vector<Element*> mesh_bodies, legacy_bodies;  // exact mesh volumes; MuJoCo's default (legacy) ones
   for (const auto& [node, mass] : mass_on_geoms_)
     (legacy_mesh_mass_.count(node) ? legacy_bodies : mesh_bodies).push_back(body_element_.at(node));
-  const bool servos = !velocity_servos_.empty();
+  const bool servos = stand_in_servos_;
   if (sink_.has_errors()) return;
   auto compile = [&](bool exact) {
     auto draft = std::make_unique<DraftModel>(root, options_.output_dir, exact);
@@ -191,7 +191,7 @@ void Lowering::finish_with_draft(Element& root) {
   if (!compiled) return;
   const DraftModel& draft = *compiled;
   draft.write_inertials(mesh_bodies);
-  finish_velocity_motors(draft);
+  finish_servo_gains(draft);
   const SoftEqualityResult r = apply_soft_equalities(draft, soft_equalities_, options_.timestep,
                                                      options_.mujoco == EmitOptions::MuJoCo::V3);
   for (const std::string& e : r.unstable) {

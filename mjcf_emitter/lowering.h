@@ -140,9 +140,10 @@ class Lowering {
   void emit_distance_mates(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
   void finish_with_draft(Element& root);
-  void finish_velocity_motors(const DraftModel& draft);  // velocity_motors.cpp
-  void collect_rigid_rows(Element& root);                // rigid_rows.cpp
-  void emit_compliant_dofs(Element& root);               // compliant_dofs.cpp
+  void finish_velocity_stand_ins(Element& root);     // velocity_motors.cpp
+  void finish_servo_gains(const DraftModel& draft);  // velocity_motors.cpp
+  void collect_rigid_rows(Element& root);            // rigid_rows.cpp
+  void emit_compliant_dofs(Element& root);           // compliant_dofs.cpp
   void stiffen_equalities(Element& root);
   std::string rigid_solref() const;
   static std::string rigid_solimp();
@@ -262,11 +263,14 @@ class Lowering {
   std::map<int, MassProperties> body_mass_;
   std::map<int, std::vector<int>> tree_children_;
   std::map<int, std::string> velocity_motors_;  // motor interaction -> its tendon (and stand-in) name
-  struct VelocityServo {
-    Element* drive;     // the <velocity> stand-in
+  struct VelocityStandIn {
+    Element* drive;     // the <general> stand-in
     std::string joint;  // its joint's MuJoCo name
+    double inertia;     // what it drives about its axis at the initial pose
+    size_t law;         // its law in laws_
   };
-  std::vector<VelocityServo> velocity_servos_;  // finish_velocity_motors sets their kv
+  std::vector<VelocityStandIn> stand_ins_;
+  bool stand_in_servos_ = false;  // servos (the model has equalities), else dampers
   struct CompliantDof {
     std::string joint;
     double stiffness, relaxation_time, inertia;  // inertia: the mass or moment it moves (0: unknown)

@@ -456,7 +456,8 @@ void write_law(Cursor& out, const RuntimeLaw& law) {
   out.text(", \"curve_x\": ").numbers(law.curve_x).text(", \"curve_y\": ").numbers(law.curve_y);
   out.text(", \"curve2_x\": ").numbers(law.curve2_x).text(", \"curve2_y\": ").numbers(law.curve2_y);
   out.text(", \"parameter\": ").number(law.parameter);
-  if (law.kind == RuntimeLaw::Kind::Spring) out.text(", \"joint_damping\": ").number(law.joint_damping);
+  if (law.kind == RuntimeLaw::Kind::Spring || law.kind == RuntimeLaw::Kind::VelocityMotor)
+    out.text(", \"joint_damping\": ").number(law.joint_damping);
   if (law.kind == RuntimeLaw::Kind::Compliance || law.kind == RuntimeLaw::Kind::Spring)
     out.text(", \"stiffness\": ").number(law.stiffness);
   if (!law.joints.empty()) out.text(", \"joints\": ").strings(law.joints);

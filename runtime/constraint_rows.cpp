@@ -129,12 +129,18 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
                              "` on the same joint");
           continue;
         }
-        // The stand-in's servo gives way to the row; its force becomes the band's centre (write).
+        // The stand-in (b * target and the damper b on the joint) gives way to the row; its force becomes
+        // the band's centre (write). Taken once per model: its gain is 0 after.
+        if (m->actuator_gainprm[a * mjNGAIN] != 0) {
+          const int dof = m->jnt_dofadr[m->actuator_trnid[2 * a]];
+          take(m->dof_damping[dof], std::max(0.0, m->dof_damping[dof] - law.joint_damping));
+        }
         take(m->actuator_gainprm[a * mjNGAIN], 0);
         take(m->actuator_biasprm[a * mjNBIAS], 0);
         take(m->actuator_biasprm[a * mjNBIAS + 1], 0);
         take(m->actuator_biasprm[a * mjNBIAS + 2], 0);
-        m->actuator_forcelimited[a] = 1;
+        m->actuator_forcelimited[a] = 1;  // the centre stays within the band
+        m->actuator_biastype[a] = mjBIAS_AFFINE;
         take(m->tendon_frictionloss[t],
              1);  // any positive value makes MuJoCo build the row; write sets its bound
         add_rigid(mjCNSTR_FRICTION_TENDON, t, a);

@@ -281,8 +281,8 @@ std::string law_problem(const mjcf::RuntimeLaw& l) {
   if (l.kind == Kind::Compliance &&
       (l.equalities.size() != 1 || !(l.stiffness > 0) || !std::isfinite(l.stiffness) || !(l.parameter >= 0)))
     return "a compliance needs one equality, a positive finite stiffness and a relaxation time not negative";
-  if (l.kind == Kind::VelocityMotor && !(l.parameter >= 0))
-    return "a velocity motor's kv must not be negative";
+  if (l.kind == Kind::VelocityMotor && !(l.joint_damping >= 0 && std::isfinite(l.joint_damping)))
+    return "a velocity motor's joint damping must be finite and not negative";
   for (const auto* curve : {&l.curve_x, &l.curve_y, &l.curve2_x, &l.curve2_y}) {
     if (!all_finite(*curve)) return "a curve holds a number that is not finite";
   }

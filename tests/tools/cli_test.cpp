@@ -253,7 +253,7 @@ TEST_F(Cli, SignalTestPassesStrict) {
 }
 
 // OpenPLX has no time-step setting: --timestep sets MuJoCo's, and the emitter's stability caps follow it (a
-// velocity motor's stand-in servo has kv = I / h: the wheel's 0.01 kg m^2 over the step).
+// velocity motor's stand-in damper is I / h: the wheel's 0.01 kg m^2 over the step).
 TEST_F(Cli, TimestepOptionSetsMuJoCosStep) {
   const std::string file =
       write("motor.openplx",
@@ -271,10 +271,10 @@ TEST_F(Cli, TimestepOptionSetsMuJoCosStep) {
             "        connectors: [anchor, wheel.axle]\n");
   EXPECT_EQ(run({file, "-o", "-", "--timestep", "0.001"}), 0) << err_.str();
   EXPECT_NE(out_.str().find("<option timestep=\"0.001\""), std::string::npos) << out_.str();
-  EXPECT_NE(out_.str().find("kv=\"10\""), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("damping=\"10\""), std::string::npos) << out_.str();
   EXPECT_EQ(run({file, "-o", "-"}), 0) << err_.str();
   EXPECT_NE(out_.str().find("<option timestep=\"0.002\""), std::string::npos);
-  EXPECT_NE(out_.str().find("kv=\"5\""), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("damping=\"5\""), std::string::npos) << out_.str();
   for (const char* bad : {"0", "-1", "fast", "1e999", ""}) {
     EXPECT_EQ(run({file, "--timestep", bad}), 2) << bad;
     EXPECT_NE(err_.str().find("--timestep takes a positive number of seconds"), std::string::npos) << bad;
