@@ -183,10 +183,11 @@ struct RuntimeLaw {
     // runtime makes the tendon's friction row AGX's spring row (docs/mapping.md "Springs") and adds its force
     // to the actuator's.
     Spring,
-    // actuators {motor}: a velocity motor's stand-in, a <velocity> actuator on its joint (target = ctrl,
-    // effort = forcerange, off = gear 0); the fixed tendon of the same name (the joint alone) carries the
-    // runtime's row, AGX's bounded velocity constraint; parameter = the stand-in's kv, which the runtime
-    // zeroes (its force becomes the band's centre).
+    // actuators {motor}: a velocity motor's stand-in, a <general> on its joint (ctrl = the target; its
+    // forcerange = the effort band; off = gear 0): b * ctrl with a damper b on the joint (joint_damping), or
+    // a servo within the band (joint_damping 0). The fixed tendon of the same name (the joint alone) carries
+    // the runtime's row, AGX's bounded velocity constraint; the runtime removes the stand-in's gain, bias and
+    // damper (the actuator then pushes the band's centre).
     VelocityMotor,
     // equalities {one joint equality holding an elastic degree of freedom at 0}: AGX's compliance row with
     // `stiffness` and SPOOK relaxation time `parameter`; the MJCF alone holds it with MuJoCo's softness.
@@ -200,7 +201,7 @@ struct RuntimeLaw {
   std::vector<std::string> actuators;  // MuJoCo actuator names
   std::vector<double> curve_x, curve_y, curve2_x, curve2_y;
   double parameter = 0;
-  double joint_damping = 0;  // Spring only
+  double joint_damping = 0;  // Spring, VelocityMotor: the damping the stand-in put on the joint
   double stiffness = 0;      // Compliance, Spring (0 in manifests before it: the actuator's gain)
   std::vector<std::string> joints, tendons, equalities;  // Compliance, RigidRows: MuJoCo names
 };
