@@ -201,20 +201,17 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
           take(m->jnt_margin[j], std::max(m->jnt_margin[j], kLimitMargin));
           add_rigid(mjCNSTR_LIMIT_JOINT, j, -1);
         }
-        for (const std::string& name : law.tendons) {
-          const int t = mj_name2id(m, mjOBJ_TENDON, name.c_str());
-          if (t < 0)
-            problems.push_back(about + "no tendon `" + name + "`");
-          else
-            add_rigid(mjCNSTR_FRICTION_TENDON, t, -1);
-        }
-        for (const std::string& name : law.equalities) {
-          const int e = mj_name2id(m, mjOBJ_EQUALITY, name.c_str());
-          if (e < 0)
-            problems.push_back(about + "no equality `" + name + "`");
-          else
-            add_rigid(mjCNSTR_EQUALITY, e, -1);
-        }
+        auto rigid = [&](const std::vector<std::string>& names, mjtObj object, int type, const char* kind) {
+          for (const std::string& name : names) {
+            const int id = mj_name2id(m, object, name.c_str());
+            if (id < 0)
+              problems.push_back(about + "no " + kind + " `" + name + "`");
+            else
+              add_rigid(type, id, -1);
+          }
+        };
+        rigid(law.tendons, mjOBJ_TENDON, mjCNSTR_FRICTION_TENDON, "tendon");
+        rigid(law.equalities, mjOBJ_EQUALITY, mjCNSTR_EQUALITY, "equality");
         break;
       }
       default:

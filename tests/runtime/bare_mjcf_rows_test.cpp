@@ -41,6 +41,7 @@ using openplx::testing::arm_number;
 using openplx::testing::ArmChain;
 using openplx::testing::Car;
 using openplx::testing::car;
+using openplx::testing::elastic_steered_car;
 using openplx::testing::emit;
 using openplx::testing::gear_pair;
 using openplx::testing::manifest_of;
@@ -501,7 +502,7 @@ TEST(BareMjcfElasticWheel, AckermannSteeringElasticWheelsIsStable) {
     SCOPED_TRACE("dt " + arm_number(h));
     const ScratchDir dir;
     const WarningRecorder warnings;  // before loading: nothing writes MUJOCO_LOG.TXT
-    auto bare = load_text(dir, car(Car{}), h);
+    auto bare = load_text(dir, car(elastic_steered_car()), h);
     if (!bare) continue;
     bare->set("steering", 0.5);
     bare->run(1.0);
@@ -522,7 +523,7 @@ TEST(BareMjcfElasticWheel, AckermannSteeringElasticWheelsIsStable) {
 TEST(BareMjcfElasticWheel, CarOnElasticWheelsDrivingFiveSecondsAtDt002IsStable) {
   constexpr double kH = 0.02;
   const ScratchDir dir;
-  Car c;
+  Car c = elastic_steered_car();
   c.chassis_width = 1.6;
   const WarningRecorder warnings;  // before loading: nothing writes MUJOCO_LOG.TXT
   auto bare = load_text(dir, car(c), kH);

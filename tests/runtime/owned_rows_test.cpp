@@ -57,6 +57,7 @@ using openplx::testing::arm_number;
 using openplx::testing::ArmChain;
 using openplx::testing::Car;
 using openplx::testing::car;
+using openplx::testing::elastic_steered_car;
 using openplx::testing::emit;
 using openplx::testing::gear_pair;
 using openplx::testing::manifest_of;
@@ -782,7 +783,7 @@ TEST(OwnedRowsElasticWheel, AckermannSteersElasticWheelsAtEveryStep) {
   for (const double h : {0.0005, 0.002, 0.02}) {
     SCOPED_TRACE("dt " + arm_number(h));
     const ScratchDir dir;
-    auto r = load_text(Path::Simulation, dir, car(Car{}), h);
+    auto r = load_text(Path::Simulation, dir, car(elastic_steered_car()), h);
     if (!r) continue;
     guarded([&] {
       EXPECT_EQ(r->output("steering_system.interaction.steering_angle_output"), 0.0);
@@ -804,7 +805,7 @@ TEST(OwnedRowsElasticWheel, AckermannSteersElasticWheelsAtEveryStep) {
 TEST(OwnedRowsElasticWheel, CarOnElasticWheelsDrivesFiveSecondsAtDt002) {
   constexpr double kH = 0.02;
   const ScratchDir dir;
-  Car c;
+  Car c = elastic_steered_car();
   c.chassis_width = 1.6;
   auto r = load_text(Path::Simulation, dir, car(c), kH);
   ASSERT_NE(r, nullptr);
