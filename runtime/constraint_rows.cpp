@@ -118,17 +118,21 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
       return -1;
     return t;
   };
+  // A law's stand-in actuator and the tendon of its name (-1 and a problem when they do not fit).
+  auto stand_in = [&](const mjcf::RuntimeLaw& law, const std::string& about, const char* what) {
+    const std::string& name = law.actuators.front();
+    const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()), t = own_tendon(name, a);
+    if (t < 0)
+      problems.push_back(about + "its " + what + " needs actuator and fixed tendon `" + name +
+                         "` on the same joint");
+    return std::pair{a, t};
+  };
   for (const mjcf::RuntimeLaw& law : laws) {
     const std::string about = "`" + law.path + "`: ";
     switch (law.kind) {
       case Kind::VelocityMotor: {
-        const std::string& name = law.actuators.front();
-        const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()), t = own_tendon(name, a);
-        if (t < 0) {
-          problems.push_back(about + "its velocity motor needs actuator and fixed tendon `" + name +
-                             "` on the same joint");
-          continue;
-        }
+        const auto [a, t] = stand_in(law, about, "velocity motor");
+        if (t < 0) continue;
         // The stand-in (b * target and the damper b on the joint) gives way to the row; its force becomes
         // the band's centre (write). Taken once per model: its gain is 0 after.
         if (m->actuator_gainprm[a * mjNGAIN] != 0) {
@@ -141,19 +145,14 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
         take(m->actuator_biasprm[a * mjNBIAS + 2], 0);
         m->actuator_forcelimited[a] = 1;  // the centre stays within the band
         m->actuator_biastype[a] = mjBIAS_AFFINE;
-        take(m->tendon_frictionloss[t],
-             1);  // any positive value makes MuJoCo build the row; write sets its bound
+        // Any positive friction loss makes MuJoCo build the row; write sets its bound.
+        take(m->tendon_frictionloss[t], 1);
         add_rigid(mjCNSTR_FRICTION_TENDON, t, a);
         break;
       }
       case Kind::Spring: {
-        const std::string& name = law.actuators.front();
-        const int a = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()), t = own_tendon(name, a);
-        if (t < 0) {
-          problems.push_back(about + "its spring needs actuator and fixed tendon `" + name +
-                             "` on the same joint");
-          continue;
-        }
+        const auto [a, t] = stand_in(law, about, "spring");
+        if (t < 0) continue;
         const double model_k = m->actuator_gainprm[a * mjNGAIN];
         const double k = law.stiffness > 0 ? law.stiffness : model_k;
         if (!(k > 0)) continue;  // taken over by an earlier resolve without the law's stiffness: skip
