@@ -32,6 +32,12 @@ std::unordered_map<const mjModel*, TakenModel>& taken_models() {
   return models;
 }
 
+// Several mjData may step one mjModel in parallel threads: a model field they all compute alike is written
+// only when it changes, so steady stepping only reads it.
+void set_if_changed(mjtNum& field, mjtNum value) {
+  if (field != value) field = value;
+}
+
 // SPOOK's Upsilon for relaxation time tau at step h.
 double upsilon(double tau, double h) {
   return 1 / (1 + 4 * tau / h);
@@ -258,7 +264,7 @@ void ConstraintRows::write_rigid(const mjModel* m, mjData* d, Rigid& r, int i, i
       const bool on = m->actuator_gear[6 * a] != 0;
       const double low = m->actuator_forcerange[2 * a], high = m->actuator_forcerange[2 * a + 1];
       // The band [low, high] = its centre, pushed by the stand-in, and the row's bound about it.
-      m->actuator_biasprm[a * mjNBIAS] = on ? (low + high) / 2 : 0.0;
+      set_if_changed(m->actuator_biasprm[a * mjNBIAS], on ? (low + high) / 2 : 0.0);
       d->efc_frictionloss[i] = on ? std::max(0.0, (high - low) / 2) : 0.0;
     }
     aref = (target - d->efc_vel[i]) / h;
@@ -318,7 +324,7 @@ void ConstraintRows::write(const mjModel* m, mjData* d) {
       high = m->actuator_forcerange[2 * a + 1];
     }
     const double centre = (low + high) / 2, half_width = std::max(0.0, (high - low) / 2);
-    m->actuator_biasprm[a * mjNBIAS] = centre;
+    set_if_changed(m->actuator_biasprm[a * mjNBIAS], centre);
     if (i < 0) continue;
     const double y = upsilon(s.relaxation_time, h), softness = 4 * y / (h * h * s.stiffness);
     const double stretch = d->ten_length[s.tendon] - d->ctrl[a];
