@@ -16,16 +16,14 @@ void Lowering::emit_compliant_dofs(Element& root) {
   Element* equality = root.child("equality");
   if (!equality) equality = &root.add("equality");
   const double h = options_.timestep;
-  for (size_t k = 0; k < compliant_dofs_.size(); ++k) {
-    const CompliantDof& c = compliant_dofs_[k];
+  for (const CompliantDof& c : compliant_dofs_) {
     const double period = c.inertia > 0 ? std::sqrt(c.inertia / c.stiffness) : 0.0;  // 1 / omega
     if (period < 2 * h) {
-      warn(compliant_where_[k],
-           "`" + c.path + "` stiffness " + number(c.stiffness) +
-               " is stiffer than MuJoCo's own constraints hold at a " + number(h) +
-               " s step; the openplx2mjcf runtime solves it exactly as AGX's compliance, "
-               "the MJCF alone holds it softer (time constant " +
-               number(2 * h) + " s)");
+      warn(c.where, "`" + c.path + "` stiffness " + number(c.stiffness) +
+                        " is stiffer than MuJoCo's own constraints hold at a " + number(h) +
+                        " s step; the openplx2mjcf runtime solves it exactly as AGX's compliance, "
+                        "the MJCF alone holds it softer (time constant " +
+                        number(2 * h) + " s)");
     }
     const std::string name = c.joint + "/compliance";
     equality->add("joint")

@@ -83,8 +83,8 @@ void Lowering::emit_joints(Element& body, int node, int m) {
           compliant_dofs_.push_back({*j->get("name"), dof.stiffness, tau,
                                      rotational ? body.inertia.diagonal().maxCoeff() : body.mass,
                                      mate.path + (rotational ? " (rotational" : " (translational") +
-                                         std::string(", ") + (axes[k] + 1) + ")"});
-          compliant_where_.push_back(mate.where);
+                                         std::string(", ") + (axes[k] + 1) + ")",
+                                     mate.where});
         }
       }
       break;

@@ -59,6 +59,20 @@ class Lowering {
   void warn(fe::SourceRange where, const std::string& message) {
     sink_.report(fe::DiagCode::MjcfUnmapped, where, message);
   }
+  // Calls f(joint) for every named <joint> of the body tree below <worldbody>, walked without recursion (a
+  // chain may be as deep as MuJoCo reads).
+  template <typename F>
+  static void for_each_joint(Element& root, F&& f) {
+    std::vector<Element*> pending{root.child("worldbody")};
+    while (!pending.empty() && pending.back()) {
+      Element* e = pending.back();
+      pending.pop_back();
+      for (const auto& child : e->children()) {
+        if (child->name() == "body") pending.push_back(child.get());
+        if (child->name() == "joint" && child->get("name")) f(*child);
+      }
+    }
+  }
   static void drop_empty(Element& root, std::string_view section) {
     auto& kids = root.children();
     kids.erase(std::remove_if(kids.begin(), kids.end(),
@@ -275,9 +289,9 @@ class Lowering {
     std::string joint;
     double stiffness, relaxation_time, inertia;  // inertia: the mass or moment it moves (0: unknown)
     std::string path;                            // the mate
+    fe::SourceRange where;                       // its line
   };
   std::vector<CompliantDof> compliant_dofs_;                // emit_compliant_dofs holds them
-  std::vector<fe::SourceRange> compliant_where_;            // their mates' lines
   std::set<std::string> compliant_equalities_;              // their equalities' names (not rigid rows)
   std::map<int, std::pair<double, double>> effort_ranges_;  // motor or spring -> its effort range enabled
   std::map<int, std::string> friction_couplings_;           // clutch or brake coupling -> its tendon

@@ -12,20 +12,10 @@ void Lowering::collect_rigid_rows(Element& root) {
   RuntimeLaw law;
   law.kind = RuntimeLaw::Kind::RigidRows;
   law.path = options_.model_name;  // the root model: its own path is empty
-  if (Element* world = root.child("worldbody")) {
-    std::vector<const Element*> pending{world};
-    while (!pending.empty()) {
-      const Element* e = pending.back();
-      pending.pop_back();
-      for (const auto& child : e->children()) {
-        if (child->name() == "body") pending.push_back(child.get());
-        const std::string* limited = child->get("limited");
-        if (child->name() == "joint" && child->get("range") && !(limited && *limited == "false") &&
-            child->get("name"))
-          law.joints.push_back(*child->get("name"));
-      }
-    }
-  }
+  for_each_joint(root, [&](const Element& joint) {
+    const std::string* limited = joint.get("limited");
+    if (joint.get("range") && !(limited && *limited == "false")) law.joints.push_back(*joint.get("name"));
+  });
   if (Element* tendons = root.child("tendon")) {
     for (const auto& t : tendons->children()) {
       const std::string* friction = t->get("frictionloss");

@@ -89,19 +89,12 @@ void Lowering::finish_velocity_stand_ins(Element& root) {
     laws_[s.law].joint_damping = gain;
   }
   if (dampers.empty()) return;
-  std::vector<Element*> pending{root.child("worldbody")};
-  while (!pending.empty() && pending.back()) {
-    Element* e = pending.back();
-    pending.pop_back();
-    for (const auto& child : e->children()) {
-      if (child->name() == "body") pending.push_back(child.get());
-      if (child->name() != "joint" || !child->get("name")) continue;
-      auto it = dampers.find(*child->get("name"));
-      if (it == dampers.end()) continue;
-      const std::string* had = child->get("damping");  // URDF damping, a spring's damper
-      child->set("damping", (had ? std::stod(*had) : 0.0) + it->second);
-    }
-  }
+  for_each_joint(root, [&](Element& joint) {
+    auto it = dampers.find(*joint.get("name"));
+    if (it == dampers.end()) return;
+    const std::string* had = joint.get("damping");  // URDF damping, a spring's damper
+    joint.set("damping", (had ? std::stod(*had) : 0.0) + it->second);
+  });
 }
 
 // The servos' gains from the draft model's mass matrix at the initial pose. Explicit Euler moves the

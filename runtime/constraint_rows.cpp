@@ -133,26 +133,27 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
                          "` on the same joint");
     return std::pair{a, t};
   };
+  // A stand-in gives way to its row: its gain, bias and the damper it put on its joint go (once per model,
+  // while its gain is not yet 0: another mjData of the model may have taken it), and its tendon gets a
+  // friction row (any positive friction loss makes MuJoCo build it; write sets its bound).
+  auto take_stand_in = [&](int a, int t, double joint_damping) {
+    if (m->actuator_gainprm[a * mjNGAIN] != 0) {
+      const int dof = m->jnt_dofadr[m->actuator_trnid[2 * a]];
+      take(m->dof_damping[dof], std::max(0.0, m->dof_damping[dof] - joint_damping));
+      take(m->actuator_gainprm[a * mjNGAIN], 0);
+      for (int k = 0; k < 3; ++k) take(m->actuator_biasprm[a * mjNBIAS + k], 0);
+    }
+    take(m->tendon_frictionloss[t], 1);
+  };
   for (const mjcf::RuntimeLaw& law : laws) {
     const std::string about = "`" + law.path + "`: ";
     switch (law.kind) {
       case Kind::VelocityMotor: {
         const auto [a, t] = stand_in(law, about, "velocity motor");
         if (t < 0) continue;
-        // The stand-in (b * target and the damper b on the joint) gives way to the row; its force becomes
-        // the band's centre (write). Taken once per model: its gain is 0 after.
-        if (m->actuator_gainprm[a * mjNGAIN] != 0) {
-          const int dof = m->jnt_dofadr[m->actuator_trnid[2 * a]];
-          take(m->dof_damping[dof], std::max(0.0, m->dof_damping[dof] - law.joint_damping));
-        }
-        take(m->actuator_gainprm[a * mjNGAIN], 0);
-        take(m->actuator_biasprm[a * mjNBIAS], 0);
-        take(m->actuator_biasprm[a * mjNBIAS + 1], 0);
-        take(m->actuator_biasprm[a * mjNBIAS + 2], 0);
-        m->actuator_forcelimited[a] = 1;  // the centre stays within the band
+        take_stand_in(a, t, law.joint_damping);  // its force becomes the band's centre (write)
+        m->actuator_forcelimited[a] = 1;         // the centre stays within the band
         m->actuator_biastype[a] = mjBIAS_AFFINE;
-        // Any positive friction loss makes MuJoCo build the row; write sets its bound.
-        take(m->tendon_frictionloss[t], 1);
         add_rigid(mjCNSTR_FRICTION_TENDON, t, a);
         break;
       }
@@ -162,15 +163,7 @@ std::vector<std::string> ConstraintRows::resolve(mjModel* m, const std::vector<m
         const double model_k = m->actuator_gainprm[a * mjNGAIN];
         const double k = law.stiffness > 0 ? law.stiffness : model_k;
         if (!(k > 0)) continue;  // taken over by an earlier resolve without the law's stiffness: skip
-        if (model_k > 0) {       // the stand-in not yet taken over (another mjData on this model may have)
-          const int dof = m->jnt_dofadr[m->actuator_trnid[2 * a]];
-          take(m->dof_damping[dof], std::max(0.0, m->dof_damping[dof] - law.joint_damping));
-          take(m->actuator_gainprm[a * mjNGAIN], 0);
-          take(m->actuator_biasprm[a * mjNBIAS], 0);
-          take(m->actuator_biasprm[a * mjNBIAS + 1], 0);
-          take(m->actuator_biasprm[a * mjNBIAS + 2], 0);
-        }
-        take(m->tendon_frictionloss[t], 1);
+        take_stand_in(a, t, law.joint_damping);
         Spring s;
         s.actuator = a;
         s.tendon = t;
