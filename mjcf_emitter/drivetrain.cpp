@@ -166,7 +166,7 @@ void Lowering::emit_drivetrain(Element& root) {
 // motion rigidly (a joint equality) and brakes both against the ground (AGX's drive_train_brake: disengaged
 // the motor turns the hinge through it, engaged it holds). An automatic one starts at 1 or 0 as initially
 // engaged; the runtime ramps it when its engage input switches.
-void Lowering::emit_friction_coupling(Element& equality, Element& tendons, const sn::DriveCoupling& c) {
+void Lowering::emit_friction_coupling(Element& /*equality*/, Element& tendons, const sn::DriveCoupling& c) {
   std::vector<int> shafts;
   for (int s : c.shafts) {
     if (s >= 0) shafts.push_back(s);

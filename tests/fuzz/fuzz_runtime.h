@@ -59,7 +59,9 @@ inline CompiledSample compile_sample(const std::string& file) {
   openplx::mjcf::EmitOptions options;
   options.model_name = evaluation.evaluator->root_name();
   const openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(view, options, sink);
-  openplx::mjcf::ManifestModel facts{openplx::mjcf::model_fingerprint(emitted.document, "").text(), 0.002};
+  openplx::mjcf::ManifestModel facts;
+  facts.fingerprint = openplx::mjcf::model_fingerprint(emitted.document, "").text();
+  facts.timestep = 0.002;
   out.manifest = openplx::mjcf::manifest_json(options.model_name, "", emitted.signals, emitted.laws, facts);
   const std::string xml = (std::filesystem::temp_directory_path() /
                            ("openplx_fuzz_" + std::to_string(getpid()) + "_" + file + ".xml"))
