@@ -71,7 +71,8 @@ class Scanner {
     const char* p = text_.data() + from;
     const char* const end = text_.data() + text_.size();
     for (; end - p >= 4; p += 4) {
-      if (special(p[0]) | special(p[1]) | special(p[2]) | special(p[3])) break;
+      // Branchless on purpose: four tests combined as ints, one branch.
+      if (int(special(p[0])) | int(special(p[1])) | int(special(p[2])) | int(special(p[3]))) break;
     }
     while (p != end && !special(*p)) ++p;
     return static_cast<size_t>(p - text_.data());

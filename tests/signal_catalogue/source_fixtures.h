@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/support/front_axle.h"
@@ -15,6 +16,12 @@ struct SourceFixture {
   std::string text;         // a complete file whose last model is the scene (a Physics3D.System)
   std::string source;       // path of the source inside the scene
   std::string probe_lines;  // more lines of the probe (indented by 8), e.g. its `relative_to`
+  // A constructor (not an aggregate), so that fixtures without probe lines leave them out without a warning.
+  SourceFixture(std::string kind_, std::string text_, std::string source_, std::string probe_lines_ = "")
+      : kind(std::move(kind_)),
+        text(std::move(text_)),
+        source(std::move(source_)),
+        probe_lines(std::move(probe_lines_)) {}
 };
 
 namespace detail {

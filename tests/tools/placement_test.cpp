@@ -23,6 +23,11 @@ namespace mjcf = openplx::mjcf;
 
 namespace {
 
+// A MuJoCo name, or `fallback` for an unnamed element.
+const char* name_or(const char* name, const char* fallback) {
+  return name ? name : fallback;
+}
+
 class Placement : public ::testing::Test {
  protected:
   // Converts a sample into the test's folder; "" when the converter failed.
@@ -157,7 +162,7 @@ TEST_F(Placement, TwoCopiesCollideWithEachOtherAndTheFloor) {
   // The right copy's rail runs along -x: its cart position reads +0 where placed.
   const int floor = mj_name2id(m, mjOBJ_GEOM, "floor");
   auto copy_of = [&](int geom) {
-    const std::string body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[geom]) ?: "";
+    const std::string body = name_or(mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[geom]), "");
     return body.rfind("left/", 0) == 0 ? 1 : body.rfind("right/", 0) == 0 ? 2 : 0;
   };
   double deepest_at_start = 0;
@@ -179,8 +184,9 @@ TEST_F(Placement, TwoCopiesCollideWithEachOtherAndTheFloor) {
       if ((k.geom1 == floor && b) || (k.geom2 == floor && a)) ++with_floor;
       if (k.dist < deepest) {
         deepest = k.dist;
-        deepest_pair = std::string(mj_id2name(m, mjOBJ_GEOM, k.geom1) ?: "?") + " and " +
-                       (mj_id2name(m, mjOBJ_GEOM, k.geom2) ?: "?") + " at t = " + std::to_string(d->time);
+        deepest_pair = std::string(name_or(mj_id2name(m, mjOBJ_GEOM, k.geom1), "?")) + " and " +
+                       name_or(mj_id2name(m, mjOBJ_GEOM, k.geom2), "?") +
+                       " at t = " + std::to_string(d->time);
       }
     }
   }

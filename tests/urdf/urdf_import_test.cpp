@@ -126,7 +126,7 @@ TEST(UrdfImport, LeadingPlusSignsAreNumbers) {
   const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(xml.find("range=\"-1 3\""), std::string::npos) << xml;
   EXPECT_NE(xml.find("pos=\"0 0.1 0\""), std::string::npos) << xml;
-  for (const std::string& upper : {"+", "++3", "+-3", "3+"}) {
+  for (const std::string upper : {"+", "++3", "+-3", "3+"}) {
     const fs::path bad = scratch / "bad.urdf";
     std::ofstream(bad) << robot("0 0 0", upper);
     EXPECT_EQ(cli({bad.string(), "-o", (scratch / "bad.xml").string()}, &err), openplx::cli::kExitInputError)

@@ -129,7 +129,9 @@ TEST(UrdfInputEdges, NumbersAreReadExactlyAsUrdfdomReadsThem) {
     EXPECT_EQ(m->body_pos[3 * arm], expected->x);
     EXPECT_EQ(m->body_pos[3 * arm + 1], expected->y);
     EXPECT_EQ(m->body_pos[3 * arm + 2], expected->z);
-    if (expected->upper > -1) EXPECT_EQ(m->jnt_range[2 * j + 1], expected->upper);
+    if (expected->upper > -1) {
+      EXPECT_EQ(m->jnt_range[2 * j + 1], expected->upper);
+    }
   };
   for (const std::string& upper : scalars) check("0 0 1", upper, 7);
   for (const std::string& xyz : lists) check(xyz, "1", 6);
