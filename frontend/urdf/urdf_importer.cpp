@@ -45,7 +45,7 @@ struct LoadedModule {
   std::string error;
 };
 
-const LoadedModule& loaded_module() {
+[[maybe_unused]] const LoadedModule& loaded_module() {  // not in fuzz builds (OPENPLX_URDF_LINKED)
   static const LoadedModule module = [] {
     LoadedModule m;
     std::string tried;
@@ -76,7 +76,7 @@ UrdfImport& as_import(void* context) {
   return *static_cast<UrdfImport*>(context);
 }
 
-constexpr OpenplxUrdfSink sink_for(UrdfImport* result) {
+[[maybe_unused]] constexpr OpenplxUrdfSink sink_for(UrdfImport* result) {
   return OpenplxUrdfSink{
       result,
       [](void* c, const char* data, size_t size) { as_import(c).text.emplace(data, size); },
