@@ -3,8 +3,10 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 tools/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)"
+# Only what runs below: the two tools and the modules they load (the URDF importer, the mesh reader), not the
+# tests or benchmarks (./test.sh turns them on again in the same build/).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DOPENPLX_BUILD_TESTS=OFF -DOPENPLX_BUILD_BENCH=OFF >/dev/null
+cmake --build build -j"$(nproc)" --target openplx2mjcf openplx-sim
 sample=samples/pendulum.openplx
 out=build/samples/pendulum.xml
 mkdir -p build/samples

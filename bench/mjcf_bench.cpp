@@ -39,11 +39,11 @@ void BM_Openplx2Mjcf(benchmark::State& state) {
     fe::DiagnosticSink sink;
     fe::Evaluation evaluation =
         fe::evaluate_file({input.string(), std::nullopt, {}, std::nullopt}, sources, sink);
-    sn::ResolvedSystem view = sn::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-    sn::run_snap(view, sink);
+    sn::ResolvedSystem system = sn::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+    sn::run_snap(system, sink);
     openplx::mjcf::EmitOptions options;
     options.model_name = "Scene";
-    openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(view, options, sink);
+    openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(system, options, sink);
     std::ofstream(xml_file(bodies)) << emitted.document.to_string();
     if (sink.has_errors()) state.SkipWithError("generated model has errors");
   }

@@ -1,6 +1,7 @@
 // SNAP scaling: wide trees of 100 to 10,000 bodies and a chain 90 deep, all left for SNAP to place.
-// BM_Snap times the assembly alone on a physics view built directly; BM_EvaluateAndSnap* time the whole
-// front end (parse, evaluate every attribute of the bundle models, build the view, SNAP) on the same shapes.
+// BM_Snap times the assembly alone on a resolved system built directly; BM_EvaluateAndSnap* time the whole
+// front end (parse, evaluate every attribute of the bundle models, build the system, SNAP) on the same
+// shapes.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -16,32 +17,32 @@ namespace sn = openplx::snap;
 
 namespace {
 
-// The view generate_mechanism() would give: links with connectors at 0 and 1 m, hinged to a base
+// The system generate_mechanism() would give: links with connectors at 0 and 1 m, hinged to a base
 // connector (trunks, or the first chain link) or to the previous link's top.
 sn::ResolvedSystem mechanism_view(size_t bodies, bool chain) {
-  sn::ResolvedSystem view;
+  sn::ResolvedSystem system;
   sn::FrameNode root;
   root.kind = sn::FrameNode::Kind::System;
   root.object = 0;
   root.defined = true;
-  view.nodes.push_back(root);
-  view.root = 0;
+  system.nodes.push_back(root);
+  system.root = 0;
   sn::Connector base;
   base.owner = 0;
   base.local = *openplx::natives::affine_from_axes(Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
                                                    Eigen::Vector3d::Zero());
-  view.connectors.push_back(base);
+  system.connectors.push_back(base);
   for (size_t i = 0; i < bodies; ++i) {
     sn::FrameNode link;
     link.kind = sn::FrameNode::Kind::Body;
     link.object = static_cast<fe::ObjectId>(i + 1);
     link.parent = 0;
-    view.nodes.push_back(link);
+    system.nodes.push_back(link);
     sn::Connector bottom = base, top = base;
     bottom.owner = top.owner = static_cast<int>(i + 1);
     top.local.position = {0, 0, 1};
-    view.connectors.push_back(bottom);
-    view.connectors.push_back(top);
+    system.connectors.push_back(bottom);
+    system.connectors.push_back(top);
     sn::Mate hinge;
     hinge.type = sn::MateType::Hinge;
     hinge.initial_angle = 0.01;
@@ -50,9 +51,9 @@ sn::ResolvedSystem mechanism_view(size_t bodies, bool chain) {
         chain ? (i == 0 ? 0 : static_cast<int>(2 * i)) : (i == trunk ? 0 : static_cast<int>(2 * trunk + 2));
     hinge.connectors[0] = parent_top;
     hinge.connectors[1] = static_cast<int>(2 * i + 1);
-    view.mates.push_back(hinge);
+    system.mates.push_back(hinge);
   }
-  return view;
+  return system;
 }
 
 // range(0): bodies; range(1): 1 for a chain, 0 for a wide tree.
@@ -60,10 +61,10 @@ void BM_Snap(benchmark::State& state) {
   const auto bodies = static_cast<size_t>(state.range(0));
   for (auto _ : state) {
     state.PauseTiming();
-    sn::ResolvedSystem view = mechanism_view(bodies, state.range(1) != 0);
+    sn::ResolvedSystem system = mechanism_view(bodies, state.range(1) != 0);
     fe::DiagnosticSink sink;
     state.ResumeTiming();
-    sn::SnapResult result = sn::run_snap(view, sink);
+    sn::SnapResult result = sn::run_snap(system, sink);
     benchmark::DoNotOptimize(result.node_world.data());
   }
   state.counters["bodies"] = static_cast<double>(bodies);
@@ -78,8 +79,8 @@ void BM_EvaluateAndSnap(benchmark::State& state) {
     fe::SourceManager sources;
     fe::DiagnosticSink sink;
     fe::Evaluation evaluation = fe::evaluate_file({path, std::nullopt, {}, std::nullopt}, sources, sink);
-    sn::ResolvedSystem view = sn::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-    sn::SnapResult result = sn::run_snap(view, sink);
+    sn::ResolvedSystem system = sn::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+    sn::SnapResult result = sn::run_snap(system, sink);
     if (sink.has_errors()) state.SkipWithError("generated model has errors");
     benchmark::DoNotOptimize(result.node_world.data());
   }

@@ -1,6 +1,7 @@
 // The whole front end in one call: find bundles, load the file, check every declaration of the file, pick
-// the root model, instantiate it and evaluate every attribute. Used by the CLI, the tests, the fuzzers and
-// the benchmarks, so they all see the same behaviour.
+// the root model, instantiate it and evaluate one instance of each layout (the rest is evaluated on demand
+// when SNAP or the emitter read it; OPENPLX_EVALUATE_EVERYTHING=1 evaluates all up front). Used by the CLI,
+// the tests, the fuzzers and the benchmarks, so they all see the same behaviour.
 #pragma once
 
 #include <memory>

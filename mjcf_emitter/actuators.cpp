@@ -27,10 +27,10 @@ void Lowering::emit_actuators(Element& root) {
   // Ranges are joint limits: several on one joint intersect.
   std::map<Element*, std::pair<double, double>> ranges;
   std::map<Element*, double> dampings;
-  for (const sn::JointProperties& p : view_.joint_properties) {
+  for (const sn::JointProperties& p : system_.joint_properties) {
     if (p.mate >= 0) joint_properties_[p.mate] = &p;
   }
-  for (const sn::Interaction1D& i : view_.interactions) {
+  for (const sn::Interaction1D& i : system_.interactions) {
     if (i.shaft >= 0) {
       emit_shaft_motor(root, i);
       continue;
@@ -57,7 +57,7 @@ void Lowering::emit_actuators(Element& root) {
                             i.kind == K::RotationalVelocityMotor || i.kind == K::TorqueMotor;
     Element* joint = joint_for(i.mate, rotational);
     if (!joint) {
-      warn(i.where, "`" + i.path + "` acts on `" + view_.mates[i.mate].path + "`, whose joint has no " +
+      warn(i.where, "`" + i.path + "` acts on `" + system_.mates[i.mate].path + "`, whose joint has no " +
                         (rotational ? "rotational" : "linear") + " degree of freedom; it was left out");
       continue;
     }
@@ -66,7 +66,7 @@ void Lowering::emit_actuators(Element& root) {
       case K::LinearRange:
       case K::RotationalRange: {
         const double lo = i.start, hi = i.end;
-        range_joints_[index_in(view_.interactions, i)] = joint_name;
+        range_joints_[index_in(system_.interactions, i)] = joint_name;
         hard_stop(*joint, options_.timestep);  // also while disabled: its enable input switches the limit on
         if (!i.enabled) break;                 // its enable input sets the limit
         auto [it, fresh] = ranges.try_emplace(joint, lo, hi);
@@ -113,7 +113,7 @@ void Lowering::emit_effort_motor(Element& actuators, const sn::Interaction1D& i,
   a.set("name", name(i.path)).set("joint", joint).set("gear", "1");
   effort_limits(a, i);
   if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
-  const int index = index_in(view_.interactions, i);
+  const int index = index_in(system_.interactions, i);
   effort_ranges_[index] = effort_range(i);
   actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.default_effort};
 }
@@ -189,10 +189,10 @@ void Lowering::emit_distance_interaction(Element& root, Element& actuators, cons
   // A connector of a nested system (a composite's end nobody bound, e.g. an actuator's) belongs to no body:
   // MuJoCo holds it in the world, which is rarely what was meant.
   for (const int c : {a, b}) {
-    const int owner = view_.connectors[c].owner;
-    if (owner >= 0 && owner != view_.root && !is_body(owner)) {
-      warn(i.where, "`" + i.path + "` acts on `" + view_.connectors[c].path + "`, which belongs to `" +
-                        view_.nodes[owner].path +
+    const int owner = system_.connectors[c].owner;
+    if (owner >= 0 && owner != system_.root && !is_body(owner)) {
+      warn(i.where, "`" + i.path + "` acts on `" + system_.connectors[c].path + "`, which belongs to `" +
+                        system_.nodes[owner].path +
                         "`, not to a body: that end is fixed in the world (bind it to a body's connector)");
     }
   }
@@ -212,7 +212,7 @@ void Lowering::emit_distance_interaction(Element& root, Element& actuators, cons
   }
   tendon.add("site").set("site", site_for(a));
   tendon.add("site").set("site", site_for(b));
-  const int index = index_in(view_.interactions, i);
+  const int index = index_in(system_.interactions, i);
   distance_tendons_[index] = name(i.path);
   if (range) return;
   double inverse_mass = 0;  // of the distance: both bodies' (the world's is zero)

@@ -1,5 +1,5 @@
 // Lowering pass, assets: <material>s from visual materials and <mesh>es from files or vertices.
-#include "mjcf_emitter/asset_files.h"
+#include "mjcf_emitter/asset_file_checks.h"
 #include "mjcf_emitter/lowering.h"
 #include "mjcf_emitter/mesh_conversion.h"
 
@@ -45,7 +45,7 @@ std::string dropped_map_effect(const sn::VisualMaterial& m, const std::string& m
 // a glossiness), metallic -> reflectance, a base colour image -> a 2-D <texture> the material repeats
 // scale_u x scale_v times.
 void Lowering::emit_visual_materials() {
-  for (const sn::VisualMaterial& m : view_.visual_materials) {
+  for (const sn::VisualMaterial& m : system_.visual_materials) {
     Element& material = assets_->add("material");
     material.set("name", name(m.path));
     if (m.tint) {

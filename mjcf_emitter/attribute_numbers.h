@@ -2,7 +2,7 @@
 // document: placement.cpp, viewer_defaults.cpp).
 #pragma once
 
-#include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <charconv>
 #include <optional>
 #include <string>

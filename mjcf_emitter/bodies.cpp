@@ -25,7 +25,7 @@ std::string Lowering::geom_class(const char* kind) const {
 bool Lowering::has_visuals(int owner) {
   if (visual_owners_.empty()) {
     visual_owners_.insert(-2);  // computed
-    for (const sn::Geometry& g : view_.geometries)
+    for (const sn::Geometry& g : system_.geometries)
       if (g.visual) visual_owners_.insert(is_body(g.owner) ? g.owner : sn::kWorld);
   }
   return visual_owners_.count(is_body(owner) ? owner : sn::kWorld) > 0;
@@ -45,7 +45,7 @@ void Lowering::emit_geom_classes(Element& root) {
 }
 
 void Lowering::emit_world_geoms(Element& world) {
-  for (const sn::Geometry& g : view_.geometries) {
+  for (const sn::Geometry& g : system_.geometries) {
     if (is_body(g.owner)) continue;
     // Geometries of systems are fixed in the world at the system's pose.
     const sn::Transform frame = g.owner >= 0 ? snap_.node_world[g.owner] : sn::Transform{};
@@ -56,7 +56,7 @@ void Lowering::emit_world_geoms(Element& world) {
 void Lowering::emit_bodies(Element& world) {
   // Children lists in declaration order.
   std::map<int, std::vector<int>>& children = tree_children_;
-  for (size_t n = 0; n < view_.nodes.size(); ++n) {
+  for (size_t n = 0; n < system_.nodes.size(); ++n) {
     if (is_body(static_cast<int>(n))) children[edges_[n].parent].push_back(static_cast<int>(n));
   }
   struct Item {
@@ -71,8 +71,8 @@ void Lowering::emit_bodies(Element& world) {
     const Item item = stack.back();
     stack.pop_back();
     if (item.depth > kMaxBodyDepth) {
-      sink_.report(fe::DiagCode::MjcfTooDeep, view_.nodes[item.node].where,
-                   "the body chain reaches " + view_.nodes[item.node].path + " at depth " +
+      sink_.report(fe::DiagCode::MjcfTooDeep, system_.nodes[item.node].where,
+                   "the body chain reaches " + system_.nodes[item.node].path + " at depth " +
                        std::to_string(item.depth) + "; MuJoCo 2.2.2 reads at most " +
                        std::to_string(kMaxBodyDepth) + " nested bodies");
       continue;
@@ -84,7 +84,7 @@ void Lowering::emit_bodies(Element& world) {
 }
 
 Element& Lowering::emit_body(Element& parent, int node) {
-  const sn::FrameNode& n = view_.nodes[node];
+  const sn::FrameNode& n = system_.nodes[node];
   const int parent_node = edges_[node].parent;
   const sn::Transform parent_world = parent_node >= 0 ? snap_.node_world[parent_node] : sn::Transform{};
   const sn::Transform local = affine_compose(affine_inverse(parent_world), snap_.node_world[node]);
@@ -115,13 +115,13 @@ Element& Lowering::emit_body(Element& parent, int node) {
 
 const std::vector<const sn::Geometry*>& Lowering::geometries_of(int node) {
   if (geometries_by_owner_.empty()) {
-    for (const sn::Geometry& g : view_.geometries) geometries_by_owner_[g.owner].push_back(&g);
+    for (const sn::Geometry& g : system_.geometries) geometries_by_owner_[g.owner].push_back(&g);
   }
   return geometries_by_owner_[node];
 }
 
 double Lowering::density_of(const sn::Geometry& g) {
-  return g.material >= 0 ? view_.materials[g.material].density : 1000.0;
+  return g.material >= 0 ? system_.materials[g.material].density : 1000.0;
 }
 
 // Mass properties (docs/mapping.md "Physics3D: bodies and geometries" and docs/urdf.md): the model's tensor
@@ -131,12 +131,12 @@ double Lowering::density_of(const sn::Geometry& g) {
 // BodyProperties::urdf_mass) with MuJoCo 2.2.2's default formula, as MuJoCo's own URDF importer does
 // (--urdf-exact-mesh-mass: exactly).
 void Lowering::emit_inertial(Element& body, int node) {
-  const sn::FrameNode& n = view_.nodes[node];
+  const sn::FrameNode& n = system_.nodes[node];
   using UrdfMass = sn::BodyProperties::UrdfMass;
   // A URDF <inertial> of mass 0: massless, as MuJoCo's importer takes it (OpenPLX's 0 would mean "computed").
   const bool massless = n.body.urdf_mass == UrdfMass::AsWritten && !(n.body.mass > 0);
   const int edge = edges_[node].mate;
-  const bool welded = edge >= 0 && view_.mates[edge].type == sn::MateType::Lock;
+  const bool welded = edge >= 0 && system_.mates[edge].type == sn::MateType::Lock;
   if (!n.body.dynamic || (massless && welded)) {
     // A static body needs no mass: MuJoCo sums its collision geoms (visual ones have density 0), as its
     // URDF importer does for a root link. A massless link stays massless and keeps the tensor it was given,
@@ -300,7 +300,7 @@ void Lowering::emit_geom(Element& parent, const sn::Geometry& g, const sn::Trans
   }
   geom.set("pos", frame.position).set_quat("quat", frame.rotation);
   if (g.visual) {
-    if (g.visual_material >= 0) geom.set("material", name(view_.visual_materials[g.visual_material].path));
+    if (g.visual_material >= 0) geom.set("material", name(system_.visual_materials[g.visual_material].path));
   }
   // MuJoCo's viewers show groups 0-2: visual geoms in 2, collision geoms in 3 where their body has visual
   // ones to show instead (mujoco_menagerie's convention), else in 0.

@@ -11,8 +11,8 @@
 #include <set>
 #include <unordered_map>
 
-#include "mjcf_emitter/instability.h"
 #include "mjcf_emitter/xml.h"
+#include "mujoco_support/instability.h"
 
 namespace openplx::mjcf {
 
@@ -30,13 +30,14 @@ std::string short_number(double value) {
 // MuJoCo names back to the OpenPLX (or URDF) items they were emitted from, and those items' declarations.
 class Locator {
  public:
-  Locator(const MuJoCoLibrary& mj, const mjModel* m, const snap::ResolvedSystem& view, std::string prefix,
+  Locator(const MuJoCoLibrary& mj, const mjModel* m, const snap::ResolvedSystem& system, std::string prefix,
           std::string root_name)
       : mj_(mj), m_(m), prefix_(std::move(prefix)), root_name_(std::move(root_name)) {
-    for (const snap::FrameNode& n : view.nodes) nodes_.emplace(n.path.empty() ? root_name_ : n.path, n.where);
-    for (const snap::Mate& mate : view.mates) mates_.emplace(mate.path, mate.where);
-    for (const snap::Interaction1D& i : view.interactions) interactions_.emplace(i.path, i.where);
-    if (view.root >= 0) root_ = view.nodes[static_cast<size_t>(view.root)].where;
+    for (const snap::FrameNode& n : system.nodes)
+      nodes_.emplace(n.path.empty() ? root_name_ : n.path, n.where);
+    for (const snap::Mate& mate : system.mates) mates_.emplace(mate.path, mate.where);
+    for (const snap::Interaction1D& i : system.interactions) interactions_.emplace(i.path, i.where);
+    if (system.root >= 0) root_ = system.nodes[static_cast<size_t>(system.root)].where;
   }
 
   // The MuJoCo name without the prefix: the OpenPLX path ("" for an unnamed element).
@@ -126,13 +127,13 @@ class Locator {
 // The declaration of the item emitted as MuJoCo element `path` (unprefixed): a body, a mate or an
 // interaction of that path, else of the nearest enclosing path (`arm.collision_0` is on body `arm`). Found
 // without a compiled model, for the elements of a model MuJoCo refused.
-frontend::SourceRange declaration_of(const snap::ResolvedSystem& view, std::string path) {
+frontend::SourceRange declaration_of(const snap::ResolvedSystem& system, std::string path) {
   while (!path.empty()) {
-    for (const snap::FrameNode& n : view.nodes)
+    for (const snap::FrameNode& n : system.nodes)
       if (n.path == path) return n.where;
-    for (const snap::Mate& m : view.mates)
+    for (const snap::Mate& m : system.mates)
       if (m.path == path) return m.where;
-    for (const snap::Interaction1D& i : view.interactions)
+    for (const snap::Interaction1D& i : system.interactions)
       if (i.path == path) return i.where;
     const size_t dot = path.rfind('.');
     if (dot == std::string::npos) break;
@@ -324,7 +325,7 @@ void reset_to_initial_state(const MuJoCoLibrary& mj, const mjModel* m, mjData* d
   mj.forward(m, d);
 }
 
-CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& view,
+CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& system,
                        const snap::SnapResult& snap, const std::string& prefix, const std::string& root_name,
                        const CheckOptions& options) {
   CheckResult result;
@@ -336,11 +337,11 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
   if (!model) {
     result.load_error = error;
     const std::string element = element_named_in(error, xml_path);
-    if (!element.empty()) result.load_error_where = declaration_of(view, without_prefix(element, prefix));
+    if (!element.empty()) result.load_error_where = declaration_of(system, without_prefix(element, prefix));
     return result;
   }
   result.loaded = true;
-  const Locator names(*mj, model, view, prefix, root_name);
+  const Locator names(*mj, model, system, prefix, root_name);
   for (const std::string& text : messages.warnings)
     result.mujoco_warnings.push_back({"MuJoCo warns while loading the MJCF: " + text, names.root()});
   if (error[0])
@@ -359,8 +360,8 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
     mj->deleteModel(model);
     return result;
   }
-  for (size_t n = 0; n < view.nodes.size(); ++n) {
-    const snap::FrameNode& node = view.nodes[n];
+  for (size_t n = 0; n < system.nodes.size(); ++n) {
+    const snap::FrameNode& node = system.nodes[n];
     if (node.kind != snap::FrameNode::Kind::Body) continue;
     const std::string name = prefix + (node.path.empty() ? root_name : node.path);
     const int id = mj->name2id(model, mjOBJ_BODY, name.c_str());
@@ -393,7 +394,7 @@ CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& 
       const char* eq_name = mj->id2name(model, mjOBJ_EQUALITY, eq);
       result.problems.push_back(std::string("equality ") + (eq_name ? eq_name : std::to_string(eq)) +
                                 " starts violated by " + number(r));
-      result.problem_where.push_back(eq_name ? declaration_of(view, without_prefix(eq_name, prefix))
+      result.problem_where.push_back(eq_name ? declaration_of(system, without_prefix(eq_name, prefix))
                                              : frontend::SourceRange{});
     }
   }

@@ -78,7 +78,7 @@ struct CheckResult {
 };
 
 // `xml_path` must be a file (mesh paths in it resolve against its folder). Body names are `prefix` + path.
-CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& view,
+CheckResult check_mjcf(const std::string& xml_path, const snap::ResolvedSystem& system,
                        const snap::SnapResult& snap, const std::string& prefix, const std::string& root_name,
                        const CheckOptions& options = {});
 

@@ -10,18 +10,18 @@ namespace {
 // The MuJoCo bodies (node indices) of each wheel and the chassis it hangs on: the two bodies of a
 // suspension mate, and the chassis with an elastic wheel's tire (its tire mate's other body, below the rim).
 // AGX's wheel joint keeps them out of contact with each other; so must MuJoCo.
-std::set<std::pair<int, int>> wheel_chassis_bodies(const sn::ResolvedSystem& view) {
+std::set<std::pair<int, int>> wheel_chassis_bodies(const sn::ResolvedSystem& system) {
   std::set<std::pair<int, int>> pairs;
   auto body_of = [&](int connector) {
-    const int owner = connector < 0 ? sn::kWorld : view.connectors[connector].owner;
-    return owner >= 0 && view.nodes[owner].kind == sn::FrameNode::Kind::Body ? owner : sn::kWorld;
+    const int owner = connector < 0 ? sn::kWorld : system.connectors[connector].owner;
+    return owner >= 0 && system.nodes[owner].kind == sn::FrameNode::Kind::Body ? owner : sn::kWorld;
   };
-  for (const sn::Mate& suspension : view.mates) {
+  for (const sn::Mate& suspension : system.mates) {
     if (suspension.type != sn::MateType::Suspension) continue;
     const int chassis = body_of(suspension.connectors[0]), wheel = body_of(suspension.connectors[1]);
     if (chassis < 0 || wheel < 0 || chassis == wheel) continue;  // on the world: the ground's contacts stay
     pairs.insert(std::minmax(chassis, wheel));
-    for (const sn::Mate& tire : view.mates) {
+    for (const sn::Mate& tire : system.mates) {
       if (tire.type != sn::MateType::ElasticTire) continue;
       const int a = body_of(tire.connectors[0]), b = body_of(tire.connectors[1]);
       const int other = a == wheel ? b : b == wheel ? a : sn::kWorld;
@@ -56,8 +56,8 @@ bool mujoco_filters(int a, int b, const std::vector<TreeEdge>& edges, const std:
 void Lowering::emit_contact_pairs(Element& root) {
   Element* contact = root.child("contact");
   const std::set<std::pair<int, int>> wheels =
-      view_.contact_models.empty() ? std::set<std::pair<int, int>>{} : wheel_chassis_bodies(view_);
-  for (const sn::ContactModel& cm : view_.contact_models) {
+      system_.contact_models.empty() ? std::set<std::pair<int, int>>{} : wheel_chassis_bodies(system_);
+  for (const sn::ContactModel& cm : system_.contact_models) {
     if (!cm.enabled) continue;
     const double mu = cm.friction;
     for (const sn::WrittenValue* restitution : {&cm.normal_restitution_at, &cm.tangential_restitution_at}) {
@@ -67,8 +67,8 @@ void Lowering::emit_contact_pairs(Element& root) {
                  "` has no MuJoCo 2.2.2 parameter; its contacts are emitted without restitution");
     }
     size_t pairs = 0;
-    for (const sn::Geometry& a : view_.geometries) {
-      for (const sn::Geometry& b : view_.geometries) {
+    for (const sn::Geometry& a : system_.geometries) {
+      for (const sn::Geometry& b : system_.geometries) {
         if (&a >= &b || a.visual || b.visual || !a.collides || !b.collides || a.owner == b.owner) continue;
         const bool match = (a.material == cm.material1 && b.material == cm.material2) ||
                            (a.material == cm.material2 && b.material == cm.material1);
@@ -96,7 +96,7 @@ void Lowering::emit_collision_filters(Element& root) {
   for (const std::unique_ptr<Element>& e : contact->children()) {
     if (e->name() == "exclude") excluded.insert({*e->get("body1"), *e->get("body2")});
   }
-  for (const auto& [a, b] : wheel_chassis_bodies(view_)) {
+  for (const auto& [a, b] : wheel_chassis_bodies(system_)) {
     if (!body_element_.count(a) || !body_element_.count(b) || mujoco_filters(a, b, edges_, body_element_))
       continue;
     const std::string body_a = mujoco_body(a), body_b = mujoco_body(b);
@@ -104,7 +104,7 @@ void Lowering::emit_collision_filters(Element& root) {
     if (excluded.insert({pair.first, pair.second}).second)
       contact->add("exclude").set("body1", pair.first).set("body2", pair.second);
   }
-  for (const sn::CollisionFilter& f : view_.collision_filters) {
+  for (const sn::CollisionFilter& f : system_.collision_filters) {
     std::vector<std::string> widened;
     const std::set<std::string> first = group_bodies(f.group1, widened);
     const std::set<std::string> second = group_bodies(f.group2, widened);
@@ -130,7 +130,7 @@ void Lowering::emit_collision_filters(Element& root) {
 // body from it would let the body fall through the ground.
 void Lowering::exclude_initial_overlaps(Element& root) {
   if (!options_.exclude_initial_overlaps || sink_.has_errors()) return;
-  const fe::SourceRange at_root = view_.root >= 0 ? view_.nodes[view_.root].where : fe::SourceRange{};
+  const fe::SourceRange at_root = system_.root >= 0 ? system_.nodes[system_.root].where : fe::SourceRange{};
   const DraftModel draft(root, options_.output_dir);
   std::string error = draft.error();
   const MuJoCoLibrary* mj = draft.model() ? mujoco_library(error) : nullptr;
@@ -158,7 +158,7 @@ void Lowering::exclude_initial_overlaps(Element& root) {
   }
   auto unprefixed = [&](const std::string& body) { return body.substr(options_.prefix.size()); };
   auto declaration = [&](const std::string& body) {
-    for (const sn::FrameNode& n : view_.nodes)
+    for (const sn::FrameNode& n : system_.nodes)
       if (n.kind == sn::FrameNode::Kind::Body && name(n.path) == body) return n.where;
     return at_root;
   };
@@ -205,25 +205,25 @@ std::set<std::string> Lowering::group_bodies(const sn::CollisionGroup& group,
                                              std::vector<std::string>& widened) {
   std::set<std::string> bodies;
   auto within = [&](int n, int ancestor) {
-    for (; n >= 0; n = view_.nodes[n].parent) {
+    for (; n >= 0; n = system_.nodes[n].parent) {
       if (n == ancestor) return true;
     }
     return false;
   };
   for (int body : group.bodies) bodies.insert(mujoco_body(body));
   for (int system : group.systems) {
-    for (const sn::Geometry& g : view_.geometries) {
+    for (const sn::Geometry& g : system_.geometries) {
       if (g.collides && within(g.owner, system)) bodies.insert(mujoco_body(g.owner));
     }
   }
   const std::set<int> geometries(group.geometries.begin(), group.geometries.end());
   std::set<int> owners;
-  for (int g : geometries) owners.insert(view_.geometries[g].owner);
+  for (int g : geometries) owners.insert(system_.geometries[g].owner);
   for (int owner : owners) {
     const std::string body = mujoco_body(owner);
     bodies.insert(body);
-    for (size_t k = 0; k < view_.geometries.size(); ++k) {
-      const sn::Geometry& g = view_.geometries[k];
+    for (size_t k = 0; k < system_.geometries.size(); ++k) {
+      const sn::Geometry& g = system_.geometries[k];
       if (g.owner == owner && g.collides && !geometries.count(static_cast<int>(k))) {
         if (std::find(widened.begin(), widened.end(), body) == widened.end()) widened.push_back(body);
         break;
@@ -235,7 +235,7 @@ std::set<std::string> Lowering::group_bodies(const sn::CollisionGroup& group,
 
 // The MuJoCo body a node's shapes end up in: its own, or the world for a system's (emit_world_geoms).
 std::string Lowering::mujoco_body(int n) {
-  return n >= 0 && is_body(n) ? name(view_.nodes[n].path) : "world";
+  return n >= 0 && is_body(n) ? name(system_.nodes[n].path) : "world";
 }
 
 }  // namespace openplx::mjcf

@@ -49,10 +49,10 @@ void DraftModel::write_inertials(const std::vector<Element*>& bodies) const {
     const mjtNum* quat = m_->body_iquat + 4 * id;
     const mjtNum* inertia = m_->body_inertia + 3 * id;
     body->add("inertial")
-        .set("pos", Eigen::Vector3d(pos[0], pos[1], pos[2]))
+        .set("pos", numbers({pos[0], pos[1], pos[2]}))
         .set("quat", number(quat[0]) + " " + number(quat[1]) + " " + number(quat[2]) + " " + number(quat[3]))
         .set("mass", m_->body_mass[id])
-        .set("diaginertia", Eigen::Vector3d(inertia[0], inertia[1], inertia[2]));
+        .set("diaginertia", numbers({inertia[0], inertia[1], inertia[2]}));
   }
 }
 

@@ -27,7 +27,7 @@ Element& Lowering::gear_equality(Element& equality, const sn::DriveCoupling& c, 
       .set("joint1", shaft_joints_[c.shafts[1]])
       .set("joint2", shaft_joints_[c.shafts[0]])
       .set("polycoef", "0 " + number(1 / ratio) + " 0 0 0");
-  gear_equalities_[index_in(view_.couplings, c)] = name(c.path);
+  gear_equalities_[index_in(system_.couplings, c)] = name(c.path);
   drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / ratio, nullptr});
   return e;
 }
@@ -46,8 +46,8 @@ void Lowering::emit_gear(Element& equality, Element& tendons, const sn::DriveCou
     gear_equality(equality, c, c.ratio);
     return;
   }
-  const double i_in = std::max(view_.shafts[c.shafts[0]].inertia, 1e-9);
-  const double i_out = std::max(view_.shafts[c.shafts[1]].inertia, 1e-9);
+  const double i_in = std::max(system_.shafts[c.shafts[0]].inertia, 1e-9);
+  const double i_out = std::max(system_.shafts[c.shafts[1]].inertia, 1e-9);
   const double inertia = 1 / (1 / i_out + 1 / (c.ratio * c.ratio * i_in));
   const double h = options_.timestep;
   const double k = viscous ? 0.0 : c.stiffness, b = viscous ? c.viscosity : c.damping;
@@ -67,7 +67,7 @@ void Lowering::emit_gear(Element& equality, Element& tendons, const sn::DriveCou
   if (b > 0) tendon.set("damping", b);
   tendon.add("joint").set("joint", shaft_joints_[c.shafts[1]]).set("coef", 1.0);
   tendon.add("joint").set("joint", shaft_joints_[c.shafts[0]]).set("coef", -1 / c.ratio);
-  tendon_gears_[index_in(view_.couplings, c)] = name(c.path);
+  tendon_gears_[index_in(system_.couplings, c)] = name(c.path);
   drive_edges_.push_back({c.shafts[0], c.shafts[1], 1 / c.ratio, nullptr});
 }
 
@@ -90,7 +90,7 @@ void Lowering::emit_gearbox(Element& equality, const sn::DriveCoupling& c) {
     if (r != 0) any = std::abs(r);
   Element& e = gear_equality(equality, c, initial.ratio != 0 ? initial.ratio : any);
   if (initial.ratio == 0) e.set("active", "false");
-  gearboxes_.insert(index_in(view_.couplings, c));
+  gearboxes_.insert(index_in(system_.couplings, c));
 }
 
 void Lowering::emit_differential(Element& equality, Element& tendons, const sn::DriveCoupling& c) {
@@ -112,7 +112,7 @@ void Lowering::emit_differential(Element& equality, Element& tendons, const sn::
       .set("joint2", right)
       .set("polycoef", "0 1 0 0 0")
       .set("active", c.locked_up ? "true" : "false");
-  differential_locks_[index_in(view_.couplings, c)] = lock;
+  differential_locks_[index_in(system_.couplings, c)] = lock;
   // Torque-limited slip: the axles stick until the torque between them passes the breakaway torque, dry
   // friction on their difference (rigid rows, like clutches).
   if (c.breakaway_torque >= 0) {
@@ -158,7 +158,7 @@ void Lowering::emit_torque_converter(Element& equality, Element& tendons, const 
     drive_actuators_.push_back({std::move(motor), 0.0});
   }
   laws_.push_back(std::move(law));
-  converters_[index_in(view_.couplings, c)] = base;
+  converters_[index_in(system_.couplings, c)] = base;
   drive_edges_.push_back({c.shafts[0], c.shafts[1], 1.0, nullptr});
 }
 
@@ -200,7 +200,7 @@ void Lowering::emit_engine(const sn::DriveCoupling& c) {
   split_curve(c.torque_curve, law.curve_x, law.curve_y);
   law.parameter = c.idle_rpm;
   laws_.push_back(std::move(law));
-  engines_[index_in(view_.couplings, c)] = actuator;
+  engines_[index_in(system_.couplings, c)] = actuator;
 }
 
 // Engines' and converters' actuators, after every other actuator (their indices follow them).

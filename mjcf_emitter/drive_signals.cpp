@@ -21,7 +21,7 @@ bool Lowering::bind_shaft(SignalBinding& b, std::string_view stem, int shaft) {
 
 // False, `b` untouched: not one of these parts' signals (bind_coupling goes on).
 bool Lowering::bind_drive_part(SignalBinding& b, std::string_view stem, int k) {
-  const sn::DriveCoupling& c = view_.couplings[k];
+  const sn::DriveCoupling& c = system_.couplings[k];
   const bool enable = any_of(stem, {"EnableInteraction", "InteractionEnabled"});
   if (gearboxes_.count(k)) {
     const std::string& equality = gear_equalities_.at(k);

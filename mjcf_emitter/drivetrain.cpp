@@ -15,7 +15,7 @@ using natives::affine_inverse;
 // gearboxes are not folded: their ratio changes at run time and their torque output is their equality's
 // force.
 void Lowering::fold_rigid_shafts() {
-  const size_t n = view_.shafts.size();
+  const size_t n = system_.shafts.size();
   shaft_group_.resize(n);
   for (size_t k = 0; k < n; ++k) shaft_group_[k] = static_cast<int>(k);
   auto group = [&](int s) {
@@ -23,12 +23,12 @@ void Lowering::fold_rigid_shafts() {
     return s;
   };
   using Kind = sn::DriveCoupling::Kind;
-  for (const sn::DriveCoupling& c : view_.couplings) {
+  for (const sn::DriveCoupling& c : system_.couplings) {
     if (c.kind == Kind::Brake && c.shafts.size() == 2 && c.shafts[0] >= 0 && c.shafts[1] >= 0)
       shaft_group_[group(c.shafts[1])] = group(c.shafts[0]);
   }
   for (size_t k = 0; k < n; ++k) shaft_group_[k] = group(static_cast<int>(k));
-  for (const sn::DriveCoupling& c : view_.couplings) {
+  for (const sn::DriveCoupling& c : system_.couplings) {
     if (c.kind != Kind::Actuator || c.shafts.size() != 1 || c.shafts[0] < 0) continue;
     if (Element* joint = actuator_joint(c)) group_joint_.try_emplace(shaft_group_[c.shafts[0]], joint);
   }
@@ -46,29 +46,29 @@ bool Lowering::joins_one_joint(const sn::DriveCoupling& c) const {
 // The 3-D joint a HingeActuator/PrismaticActuator drives, nullptr when its mate has none in MuJoCo's tree.
 Element* Lowering::actuator_joint(const sn::DriveCoupling& c) {
   if (c.mate < 0 || !tree_mates_.count(c.mate)) return nullptr;
-  return joint_for(c.mate, view_.mates[c.mate].type != sn::MateType::Prismatic);
+  return joint_for(c.mate, system_.mates[c.mate].type != sn::MateType::Prismatic);
 }
 
 void Lowering::emit_drivetrain(Element& root) {
-  if (view_.shafts.empty()) return;
+  if (system_.shafts.empty()) return;
   fold_rigid_shafts();
-  std::vector<double> crank(view_.shafts.size(), 0.0);  // engines' own inertia turns with their shaft
-  for (const sn::DriveCoupling& c : view_.couplings) {
+  std::vector<double> crank(system_.shafts.size(), 0.0);  // engines' own inertia turns with their shaft
+  for (const sn::DriveCoupling& c : system_.couplings) {
     if (c.kind == sn::DriveCoupling::Kind::Engine && c.shafts.size() == 1 && c.shafts[0] >= 0)
       crank[static_cast<size_t>(c.shafts[0])] += std::max(c.crank_inertia, 0.0);
   }
   // A group's inertia beyond its own joint's: every folded shaft's, and engines' cranks.
   std::map<int, double> armature;
-  for (size_t k = 0; k < view_.shafts.size(); ++k) {
+  for (size_t k = 0; k < system_.shafts.size(); ++k) {
     const int g = shaft_group_[k];
     const bool own_body = g == static_cast<int>(k) && !group_joint_.count(g);
-    armature[g] += crank[k] + (own_body ? 0.0 : std::max(view_.shafts[k].inertia, 1e-9));
+    armature[g] += crank[k] + (own_body ? 0.0 : std::max(system_.shafts[k].inertia, 1e-9));
   }
-  shaft_joints_.resize(view_.shafts.size());
-  shaft_offsets_.assign(view_.shafts.size(), 0.0);
-  for (size_t k = 0; k < view_.shafts.size(); ++k) {
+  shaft_joints_.resize(system_.shafts.size());
+  shaft_offsets_.assign(system_.shafts.size(), 0.0);
+  for (size_t k = 0; k < system_.shafts.size(); ++k) {
     if (shaft_group_[k] != static_cast<int>(k) || group_joint_.count(static_cast<int>(k))) continue;
-    const sn::Shaft& shaft = view_.shafts[k];
+    const sn::Shaft& shaft = system_.shafts[k];
     Element& body = world_->add("body");
     body.set("name", name(shaft.path)).set("pos", "0 0 0");
     Element& joint = body.add("joint");
@@ -84,11 +84,11 @@ void Lowering::emit_drivetrain(Element& root) {
     const std::string* given = joint->get("armature");
     joint->set("armature", armature[g] + (given ? std::stod(*given) : 0.0));
   }
-  for (size_t k = 0; k < view_.shafts.size(); ++k) {
+  for (size_t k = 0; k < system_.shafts.size(); ++k) {
     const int g = shaft_group_[k];
     auto folded = group_joint_.find(g);
     if (folded == group_joint_.end()) {
-      shaft_joints_[k] = name(view_.shafts[g].path);
+      shaft_joints_[k] = name(system_.shafts[g].path);
       continue;
     }
     shaft_joints_[k] = *folded->second->get("name");
@@ -99,7 +99,7 @@ void Lowering::emit_drivetrain(Element& root) {
   Element& equality = *root.child("equality");
   Element& tendons = root.add("tendon");
   using Kind = sn::DriveCoupling::Kind;
-  for (const sn::DriveCoupling& c : view_.couplings) {
+  for (const sn::DriveCoupling& c : system_.couplings) {
     if (c.kind != Kind::Actuator && c.kind != Kind::Brake && joins_one_joint(c)) {
       warn(c.where, "`" + c.path +
                         "` joins shafts that turn as one (held together rigidly by hinge/prismatic actuators "
@@ -189,7 +189,7 @@ void Lowering::emit_friction_coupling(Element& /*equality*/, Element& tendons, c
       .set("solimpfriction", rigid_solimp());
   for (size_t k = 0; k < shafts.size(); ++k)
     tendon.add("joint").set("joint", shaft_joints_[shafts[k]]).set("coef", k == 0 ? 1.0 : -1.0);
-  friction_couplings_[index_in(view_.couplings, c)] = name(c.path);
+  friction_couplings_[index_in(system_.couplings, c)] = name(c.path);
 }
 
 // A motor on a shaft: a velocity motor is a motor constraint (velocity_motors.cpp) on the shaft's joint, its
@@ -212,7 +212,7 @@ double Lowering::drivetrain_inertia(int start) {
   while (!todo.empty()) {
     const int s = todo.back();
     todo.pop_back();
-    total += std::max(view_.shafts[s].inertia, 1e-9) * speed[s] * speed[s];
+    total += std::max(system_.shafts[s].inertia, 1e-9) * speed[s] * speed[s];
     for (const DriveEdge& e : drive_edges_) {
       if (e.joint && e.from == s) total += effective_inertia(*e.joint) * speed[s] * speed[s];
       if (e.to < 0 || (e.from != s && e.to != s)) continue;

@@ -49,8 +49,8 @@ Emitted Lowering::run() {
                         .set("gravity", gravity())
                         .set("integrator", "Euler");
   // Room for track links' contacts, sized by the tracks pass (tracks.cpp) once it knows the links it made.
-  if (!view_.tracks.empty()) size_ = &root.add("size");
-  for (const sn::Unsupported& u : view_.unsupported) {
+  if (!system_.tracks.empty()) size_ = &root.add("size");
+  for (const sn::Unsupported& u : system_.unsupported) {
     warn(u.where, "`" + u.path + "` is a " + u.type +
                       ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
                       "were left out");
@@ -107,18 +107,18 @@ Emitted Lowering::run() {
 // Simulation.Environment's uniform gravity field, else standard gravity.
 Eigen::Vector3d Lowering::gravity() {
   const Eigen::Vector3d standard(0, 0, -9.81);
-  switch (view_.gravity.kind) {
+  switch (system_.gravity.kind) {
     case sn::Gravity::Kind::Standard:
       return standard;
     case sn::Gravity::Kind::NonUniform:
-      warn(view_.nodes[view_.root].where,
+      warn(system_.nodes[system_.root].where,
            "`gravity` is not a uniform field; MuJoCo has only uniform gravity, so "
            "standard gravity was used");
       return standard;
     case sn::Gravity::Kind::Uniform:
       break;
   }
-  return view_.gravity.vector;
+  return system_.gravity.vector;
 }
 
 Emitted emit_mjcf(const snap::ResolvedSystem& system, const EmitOptions& options,

@@ -1,4 +1,4 @@
-// OpenPLX physics view (after SNAP) to an MJCF document for MuJoCo 2.2.2 (spec/mjcf-mapping.md).
+// OpenPLX resolved system (after SNAP) to an MJCF document for MuJoCo 2.2.2 (docs/mapping.md).
 //
 // A spanning tree rooted at the world becomes the body tree: tree mates become joints in the child body at
 // its connector (Hinge: hinge, Prismatic: slide, Cylindrical: slide + hinge, Ball: ball, Lock: no joint),
@@ -12,9 +12,9 @@
 #include <memory>
 #include <string>
 
+#include "contract/signal_binding.h"
 #include "frontend/diagnostics/diagnostics.h"
 #include "mjcf_emitter/mesh_conversion.h"
-#include "mjcf_emitter/signal_binding.h"
 #include "mjcf_emitter/xml.h"
 #include "snap/snap.h"
 

@@ -15,15 +15,15 @@ void Lowering::emit_loop_closures(Element& root) {
   std::set<std::pair<std::string, std::string>> excluded;
   for (const auto& e : adjacency_) {
     if (tree_mates_.count(e.mate)) continue;
-    const sn::Mate& mate = view_.mates[e.mate];
-    const std::string a = e.a >= 0 ? name(view_.nodes[e.a].path) : "world";
-    const std::string b = e.b >= 0 ? name(view_.nodes[e.b].path) : "world";
+    const sn::Mate& mate = system_.mates[e.mate];
+    const std::string a = e.a >= 0 ? name(system_.nodes[e.a].path) : "world";
+    const std::string b = e.b >= 0 ? name(system_.nodes[e.b].path) : "world";
     // The anchor: connector 0 in its body's frame (MuJoCo derives body2's point from the assembled pose).
     // A connector on the world side (World, or one owned by a system) is given in world coordinates.
     const sn::Transform frame0 =
-        e.a >= 0 ? view_.connectors[mate.connectors[0]].local : snap_.connector_world[mate.connectors[0]];
+        e.a >= 0 ? system_.connectors[mate.connectors[0]].local : snap_.connector_world[mate.connectors[0]];
     const sn::Transform frame1 =
-        e.b >= 0 ? view_.connectors[mate.connectors[1]].local : snap_.connector_world[mate.connectors[1]];
+        e.b >= 0 ? system_.connectors[mate.connectors[1]].local : snap_.connector_world[mate.connectors[1]];
     const Eigen::Vector3d anchor = frame0.position;
     const std::optional<MateCompliance> soft = compliance(mate);
     if (!soft) warn_mate_softness(mate, true);
@@ -78,7 +78,7 @@ void Lowering::emit_loop_closures(Element& root) {
     if (e.a >= 0 && e.b >= 0 && excluded.insert({std::min(a, b), std::max(a, b)}).second) {
       contact.add("exclude").set("body1", a).set("body2", b);
     }
-    for (const sn::Interaction1D& i : view_.interactions) {
+    for (const sn::Interaction1D& i : system_.interactions) {
       if (i.mate == e.mate) {
         warn(i.where, "`" + i.path + "` acts on `" + mate.path + "`, which " +
                           (mate.enabled ? "closes a loop" : "is disabled (`enabled: false`)") +
@@ -169,7 +169,7 @@ void Lowering::finish_with_draft(Element& root) {
     auto draft = std::make_unique<DraftModel>(root, options_.output_dir, exact);
     for (const std::string& text : draft->warnings()) {  // MuJoCo's own words, at the root model
       sink_.report(fe::DiagCode::MuJoCoWarning,
-                   view_.root >= 0 ? view_.nodes[view_.root].where : fe::SourceRange{},
+                   system_.root >= 0 ? system_.nodes[system_.root].where : fe::SourceRange{},
                    "MuJoCo warns while compiling the draft model: " + text);
     }
     if (!draft->model()) {
@@ -206,8 +206,8 @@ void Lowering::finish_with_draft(Element& root) {
 // (a tendon of length zero has no direction).
 void Lowering::emit_distance_mates(Element& root) {
   Element& equality = *root.child("equality");
-  for (size_t m = 0; m < view_.mates.size(); ++m) {
-    const sn::Mate& mate = view_.mates[m];
+  for (size_t m = 0; m < system_.mates.size(); ++m) {
+    const sn::Mate& mate = system_.mates[m];
     if (mate.type != sn::MateType::Distance || mate.connectors[0] < 0 || mate.connectors[1] < 0) continue;
     const int a = vertex_of_connector(mate.connectors[0]), b = vertex_of_connector(mate.connectors[1]);
     if (a == b) {
@@ -219,7 +219,7 @@ void Lowering::emit_distance_mates(Element& root) {
                                  .norm();
     const std::string element = name(mate.path);
     if (assembled < 1e-9 && std::abs(mate.target_distance) < 1e-9) {
-      const sn::Transform local = view_.connectors[mate.connectors[0]].local;
+      const sn::Transform local = system_.connectors[mate.connectors[0]].local;
       equality.add("connect")
           .set("name", element)
           .set("body1", mujoco_body(a))
@@ -255,10 +255,10 @@ void Lowering::emit_distance_mates(Element& root) {
 // joint values (a joint's value includes its mate's initial angle or position).
 void Lowering::emit_joint_couplings(Element& root) {
   Element* equality = root.child("equality");
-  for (const sn::JointCoupling& c : view_.joint_couplings) {
+  for (const sn::JointCoupling& c : system_.joint_couplings) {
     auto joint = [&](int mate) -> Element* {
       if (mate < 0 || !tree_mates_.count(mate)) return nullptr;
-      return joint_for(mate, view_.mates[mate].type != sn::MateType::Prismatic);
+      return joint_for(mate, system_.mates[mate].type != sn::MateType::Prismatic);
     };
     Element* follower = joint(c.follower);
     Element* leader = joint(c.leader);

@@ -4,11 +4,11 @@
 namespace openplx::mjcf {
 
 void Lowering::emit_joints(Element& body, int node, int m) {
-  const sn::Mate& mate = view_.mates[m];
+  const sn::Mate& mate = system_.mates[m];
   warn_mate_softness(mate, false);
   if (mate.type == sn::MateType::Lock) return;  // a rigid child: no joint
   const int side = vertex_of_connector(mate.connectors[1]) == node ? 1 : 0;
-  const sn::Connector& c = view_.connectors[mate.connectors[side]];
+  const sn::Connector& c = system_.connectors[mate.connectors[side]];
   // The connector in the body frame (its owner is this body).
   const Eigen::Vector3d pos = c.local.position;
   // connectors[1] relative to connectors[0] about +main_axis: on side 0 the body turns the other way.
@@ -45,7 +45,7 @@ void Lowering::emit_joints(Element& body, int node, int m) {
       // then steering about it, then spin about main_axis: MuJoCo turns each joint's axis by the joints
       // before it, so the spin axis steers with the wheel. The connector frames coincide at rest.
       const double sign = side == 1 ? 1.0 : -1.0;
-      const sn::Connector& chassis = view_.connectors[mate.connectors[0]];
+      const sn::Connector& chassis = system_.connectors[mate.connectors[0]];
       const Eigen::Vector3d along0 =
           mate.travel.isZero() ? Eigen::Vector3d::UnitX()
                                : Eigen::Vector3d(chassis.local.rotation.inverse() * mate.travel.normalized());
@@ -79,7 +79,7 @@ void Lowering::emit_joints(Element& body, int node, int m) {
           const double tau = dof.damping_constant  ? *dof.damping_constant / dof.stiffness
                              : dof.relaxation_time ? *dof.relaxation_time
                                                    : kDefaultRelaxationTime;
-          const sn::BodyProperties& body = view_.nodes[node].body;
+          const sn::BodyProperties& body = system_.nodes[node].body;
           compliant_dofs_.push_back({*j->get("name"), dof.stiffness, tau,
                                      rotational ? body.inertia.diagonal().maxCoeff() : body.mass,
                                      mate.path + (rotational ? " (rotational" : " (translational") +
@@ -107,7 +107,7 @@ void Lowering::emit_joints(Element& body, int node, int m) {
 // 0.5 on the wheel's mass: AGX's default 1e8 N/m is one) would make explicit integration blow up; its
 // travel is held rigid instead, which is what such a spring does to within m g / k, and said so.
 bool Lowering::travel_held_rigid(const sn::Mate& mate, int node) {
-  const double k = mate.travel_stiffness, mass = view_.nodes[node].body.mass;
+  const double k = mate.travel_stiffness, mass = system_.nodes[node].body.mass;
   if (!too_stiff_for_step(k, mass)) return false;
   warn(mate.where, "`" + mate.path + ".spring_constant` (" + number(k) + " N/m on " + number(mass) +
                        " kg) is stiffer than MuJoCo integrates at a " + number(options_.timestep) +
@@ -160,7 +160,7 @@ Element* Lowering::joint_for(int mate, bool rotational) {
   if (it == joint_of_mate_.end()) return nullptr;
   // A suspension's rotational degree of freedom for motors, ranges and signals is its wheel's spin (the
   // steering angle belongs to the steering mechanism).
-  const bool suspension = view_.mates[mate].type == sn::MateType::Suspension;
+  const bool suspension = system_.mates[mate].type == sn::MateType::Suspension;
   if (suspension && rotational) return it->second.back();
   for (Element* j : it->second) {
     const bool hinge = *j->get("type") == "hinge";
@@ -172,7 +172,7 @@ Element* Lowering::joint_for(int mate, bool rotational) {
 // URDF <dynamics>: damping adds to the springs' own; friction becomes frictionloss (a constant Coulomb
 // friction is exactly what MuJoCo's joint friction is), added to a mate friction already there.
 void Lowering::apply_joint_properties(std::map<Element*, double>& dampings) {
-  for (const sn::JointProperties& p : view_.joint_properties) {
+  for (const sn::JointProperties& p : system_.joint_properties) {
     if (p.mate < 0 || !tree_mates_.count(p.mate)) {
       if (p.damping > 0 || p.friction > 0)
         warn(p.where, "`" + p.path + "` (URDF dynamics) is on a mate that closes a loop or joins nothing; " +
@@ -181,9 +181,9 @@ void Lowering::apply_joint_properties(std::map<Element*, double>& dampings) {
     }
     // A planar mate's three joints all take the URDF dynamics, as MuJoCo's importer gives them.
     std::vector<Element*> joints;
-    if (view_.mates[p.mate].type == sn::MateType::Planar) {
+    if (system_.mates[p.mate].type == sn::MateType::Planar) {
       joints = joint_of_mate_[p.mate];
-    } else if (Element* j = joint_for(p.mate, view_.mates[p.mate].type != sn::MateType::Prismatic)) {
+    } else if (Element* j = joint_for(p.mate, system_.mates[p.mate].type != sn::MateType::Prismatic)) {
       joints.push_back(j);
     }
     for (Element* joint : joints) {  // none for a Lock: nothing moves

@@ -46,7 +46,7 @@ std::vector<double> Lowering::initial_qvel() {
   }
   std::vector<double> qvel(static_cast<size_t>(nv), 0.0);
   for (int node : initial_velocities_) {
-    const sn::FrameNode& n = view_.nodes[node];
+    const sn::FrameNode& n = system_.nodes[node];
     const Eigen::Matrix3d system =
         n.parent >= 0 ? snap_.node_world[n.parent].rotation.toRotationMatrix() : Eigen::Matrix3d::Identity();
     const Eigen::Matrix3d body = snap_.node_world[node].rotation.toRotationMatrix();

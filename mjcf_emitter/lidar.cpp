@@ -10,8 +10,8 @@ constexpr size_t kMaxRays = 4096;  // each ray is a site and a sensor: a dense s
 }
 
 void Lowering::emit_lidars() {
-  for (size_t k = 0; k < view_.lidars.size(); ++k) {
-    const sn::Lidar& lidar = view_.lidars[k];
+  for (size_t k = 0; k < system_.lidars.size(); ++k) {
+    const sn::Lidar& lidar = system_.lidars[k];
     if (lidar.connector < 0) {
       warn(lidar.where,
            "lidar `" + lidar.path + "` has no mate_connector_attachment in the model; it was left out");
@@ -55,7 +55,7 @@ void Lowering::emit_lidars() {
 void Lowering::bind_lidar(SignalBinding& b, int k) {
   auto it = lidar_sensors_.find(k);
   if (b.input || it == lidar_sensors_.end())
-    return unmapped(b, "lidar `" + view_.lidars[k].path + "` has no rangefinders");
+    return unmapped(b, "lidar `" + system_.lidars[k].path + "` has no rangefinders");
   b.value = SignalValue::Vector;
   b.unit = "m";
   b.quantity = Quantity::SensorFields;

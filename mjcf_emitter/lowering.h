@@ -1,8 +1,8 @@
 // The MJCF emitter's shared state, internal to mjcf_emitter/: one Lowering object runs the passes in order
-// (run, in emitter.cpp). Each pass lives in its own file and writes one MJCF concern; later passes
-// read what earlier ones recorded (the tree, the elements of bodies and joints, the actuators). Inputs are
-// only the resolved system, the options and the diagnostic sink. See mjcf_emitter/README.md for which file
-// writes which element.
+// (run, in emitter.cpp). Most files hold one pass for one MJCF concern; some are entered from several
+// passes (equalities.cpp: README.md says which). Later passes read what earlier ones recorded (the tree, the
+// elements of bodies and joints, the actuators). Inputs are only the resolved system, the options and the
+// diagnostic sink. See mjcf_emitter/README.md for which file writes which element.
 #pragma once
 
 #include <algorithm>
@@ -39,8 +39,8 @@ struct TreeEdge {
 
 class Lowering {
  public:
-  Lowering(const sn::ResolvedSystem& view, const EmitOptions& options, fe::DiagnosticSink& sink)
-      : view_(view), snap_(view.assembly), options_(options), sink_(sink) {}
+  Lowering(const sn::ResolvedSystem& system, const EmitOptions& options, fe::DiagnosticSink& sink)
+      : system_(system), snap_(system.assembly), options_(options), sink_(sink) {}
 
   Emitted run();
 
@@ -49,11 +49,11 @@ class Lowering {
   std::string name(const std::string& path) const {
     return options_.prefix + (path.empty() ? options_.model_name : path);
   }
-  bool is_body(int node) const { return node >= 0 && view_.nodes[node].kind == sn::FrameNode::Kind::Body; }
-  bool is_static(int node) const { return is_body(node) && !view_.nodes[node].body.dynamic; }
+  bool is_body(int node) const { return node >= 0 && system_.nodes[node].kind == sn::FrameNode::Kind::Body; }
+  bool is_static(int node) const { return is_body(node) && !system_.nodes[node].body.dynamic; }
   // The graph vertex a connector hangs on: its body, or the world for system connectors and World.
   int vertex_of_connector(int connector) const {
-    const int owner = view_.connectors[connector].owner;
+    const int owner = system_.connectors[connector].owner;
     return is_body(owner) ? owner : kWorldVertex;
   }
   void warn(fe::SourceRange where, const std::string& message) {
@@ -251,7 +251,7 @@ class Lowering {
     int cost;
   };
 
-  const sn::ResolvedSystem& view_;
+  const sn::ResolvedSystem& system_;
   const sn::SnapResult& snap_;
   const EmitOptions& options_;
   fe::DiagnosticSink& sink_;
@@ -347,7 +347,7 @@ class Lowering {
   std::map<int, std::string> range_joints_;                     // by interaction
   std::map<std::string, int> ranges_on_joint_;                  // how many of those each joint has
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
-  SignalClasses signal_classes_;                                // keyed by the view's type names
+  SignalClasses signal_classes_;                                // keyed by the system's type names
   std::map<int, std::string> distance_tendons_;                 // DistanceRange/Motor -> its tendon
   std::map<int, std::string> distance_mates_;                   // Distance mate -> its tendon and equality
   struct SteeringElements {

@@ -1,5 +1,6 @@
 #include "mjcf_emitter/mass_properties.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 namespace openplx::mjcf {

@@ -3,7 +3,7 @@
 // combines the parts about their common centre of mass.
 #pragma once
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <optional>
 #include <vector>
 

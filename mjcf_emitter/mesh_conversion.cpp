@@ -1,7 +1,5 @@
 #include "mjcf_emitter/mesh_conversion.h"
 
-#include <dlfcn.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -10,9 +8,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
+#include <string>
+#include <vector>
 
-#include "frontend/bundles/bundles.h"
+#include "frontend/platform/loadable_module.h"
 #include "mjcf_emitter/mesh_module_abi.h"
 
 namespace openplx::mjcf {
@@ -27,26 +26,21 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-std::mutex candidates_mutex;
-std::vector<std::string>& extra_candidates() {
-  static std::vector<std::string> paths;
-  return paths;
-}
-
-// Beside an installed executable, then this build's, then the configured install prefix's, then registered.
-std::vector<std::string> module_candidates() {
+// This build's module, then the install prefix's.
+std::vector<std::string> configured_paths() {
   std::vector<std::string> paths;
-  if (const fs::path dir = frontend::executable_dir(); !dir.empty())
-    paths.push_back((dir / "../lib/openplx2mjcf/libopenplx_meshes.so").lexically_normal());
 #ifdef OPENPLX_MESH_MODULE_BUILT
   paths.emplace_back(OPENPLX_MESH_MODULE_BUILT);
 #endif
 #ifdef OPENPLX_MESH_MODULE_INSTALLED
   paths.emplace_back(OPENPLX_MESH_MODULE_INSTALLED);
 #endif
-  std::lock_guard lock(candidates_mutex);
-  paths.insert(paths.end(), extra_candidates().begin(), extra_candidates().end());
   return paths;
+}
+
+frontend::PluginSearch& module_search() {
+  static frontend::PluginSearch search("libopenplx_meshes.so", configured_paths());
+  return search;
 }
 
 struct LoadedModule {
@@ -58,25 +52,13 @@ struct LoadedModule {
 const LoadedModule& loaded_module() {
   static const LoadedModule module = [] {
     LoadedModule m;
-    std::string tried;
-    for (const std::string& path : module_candidates()) {
-      std::error_code ec;
-      if (!fs::is_regular_file(path, ec)) {
-        tried += (tried.empty() ? "" : ", ") + path;
-        continue;
-      }
-      // Never closed: its code may still be on a stack when the process ends.
-      void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
-      if (!handle) {
-        const char* why = dlerror();
-        m.error = "cannot load the mesh reader " + path + ": " + (why ? why : "unknown error");
-        return m;
-      }
-      m.read = reinterpret_cast<OpenplxReadMeshFunction>(dlsym(handle, OPENPLX_READ_MESH_SYMBOL));
-      if (!m.read) m.error = "the mesh reader " + path + " has no " OPENPLX_READ_MESH_SYMBOL;
-      return m;
-    }
-    m.error = "cannot find the mesh reader libopenplx_meshes.so (tried " + tried + ")";
+    const frontend::LoadableModule library =
+        frontend::load_first_module("the mesh reader", module_search().file_name(),
+                                    module_search().candidates(), frontend::Binding::Lazy);
+    if (!library.handle)
+      m.error = library.error;
+    else
+      library.find(OPENPLX_READ_MESH_SYMBOL, m.read, m.error);
     return m;
   }();
   return module;
@@ -184,8 +166,7 @@ bool converted_with_assimp(const std::string& path) {
 }
 
 void add_mesh_module_candidate(const std::string& path) {
-  std::lock_guard lock(candidates_mutex);
-  extra_candidates().push_back(path);
+  module_search().add(path);
 }
 
 std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh) {

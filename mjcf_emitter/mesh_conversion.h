@@ -32,12 +32,12 @@ inline constexpr size_t kMaxStlTriangles = 200000;
 // Whether the file goes through assimp: any extension but .obj, .msh and .stl (compared case-insensitively),
 // and an .stl that is ASCII (begins with `solid` and its size is no binary STL's) or binary with more than
 // kMaxStlTriangles triangles. Other .obj, .msh and .stl files go to MuJoCo unchanged, checked first by
-// asset_files.h (a damaged binary STL is diagnosed there as such).
+// asset_file_checks.h (a damaged binary STL is diagnosed there as such).
 bool converted_with_assimp(const std::string& path);
 
 // Reads the file at `path` with assimp into `mesh`; empty on success, else why it cannot be read (assimp's
 // message, "it holds no triangles", or why the reader module is missing). The mesh is not yet checked for
-// being a solid (asset_files.h). assimp lives in a module loaded on the first call (mesh_module_abi.h),
+// being a solid (asset_file_checks.h). assimp lives in a module loaded on the first call (mesh_module_abi.h),
 // found beside the executable (../lib/openplx2mjcf/), in the build, in the install prefix, or at a path
 // registered here first (a package that installs it elsewhere).
 std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh);

@@ -3,8 +3,9 @@
 #include <dlfcn.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <mutex>
+
+#include "frontend/platform/loadable_module.h"
 
 #ifndef OPENPLX_MUJOCO_LIBRARY
 #define OPENPLX_MUJOCO_LIBRARY "libmujoco.so.2.2.2"
@@ -12,32 +13,19 @@
 
 namespace openplx::mjcf {
 
-namespace detail {
-ErrorJump*& current_error_jump() {
-  thread_local ErrorJump* jump = nullptr;
-  return jump;
-}
-}  // namespace detail
-
 namespace {
-
-template <typename Function>
-bool find(void* handle, const char* name, Function& function, std::string& error) {
-  function = reinterpret_cast<Function>(dlsym(handle, name));
-  if (!function) error = std::string("MuJoCo's library has no ") + name;
-  return function != nullptr;
-}
 
 // A variable of the library as its own code reaches it: a program that names the variable itself (linked
 // with MuJoCo, as the runtime is) holds a copy the library's code uses instead of its own (a copy
 // relocation), and only a global lookup finds that one; loaded by us alone, the library's own is the one.
 template <typename Pointer>
-bool find_variable(void* handle, const char* name, Pointer& variable, std::string& error) {
-  void* address = dlsym(RTLD_DEFAULT, name);
-  if (!address) address = dlsym(handle, name);
-  variable = reinterpret_cast<Pointer>(address);
-  if (!variable) error = std::string("MuJoCo's library has no ") + name;
-  return variable != nullptr;
+bool find_variable(const frontend::LoadableModule& module, const char* name, Pointer& variable,
+                   std::string& error) {
+  if (void* copy = dlsym(RTLD_DEFAULT, name)) {
+    variable = reinterpret_cast<Pointer>(copy);
+    return true;
+  }
+  return module.find(name, variable, error);
 }
 
 using Handler = void (*)(const char*);
@@ -72,20 +60,14 @@ void handle_warning(const char* text) {
 }
 
 [[noreturn]] void handle_error(const char* text) {
-  if (detail::ErrorJump* jump = detail::current_error_jump()) {
-    std::snprintf(jump->message, sizeof(jump->message), "%s", text);
-    siglongjmp(jump->target, 1);
-  }
+  mujoco_support::jump_to_trap(text);
   Handler replaced = nullptr;
   {
     const std::lock_guard<std::mutex> lock(handlers_mutex);
     replaced = replaced_error;
   }
   if (replaced) replaced(text);  // another thread's MuJoCo call: its owner's handler (which does not return)
-  // MuJoCo may not be returned to (it would go on with what failed), nor can anything above be unwound.
-  std::fprintf(stderr, "MuJoCo error: %s\n", text);
-  std::fflush(stderr);
-  std::_Exit(EXIT_FAILURE);
+  mujoco_support::end_process(text);
 }
 
 }  // namespace
@@ -120,26 +102,26 @@ const MuJoCoLibrary* mujoco_library(std::string& error) {
   static bool loaded = false;
   static std::once_flag once;
   std::call_once(once, [] {
-    void* handle = dlopen(OPENPLX_MUJOCO_LIBRARY, RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = dlerror();
-      load_error = std::string("cannot load MuJoCo (" OPENPLX_MUJOCO_LIBRARY "): ") + (why ? why : "unknown");
+    // Bound at once, so a library that cannot resolve its own dependencies fails here, not mid-call.
+    const frontend::LoadableModule mujoco =
+        frontend::load_module_by_soname("MuJoCo", OPENPLX_MUJOCO_LIBRARY, frontend::Binding::Now);
+    if (!mujoco.handle) {
+      load_error = mujoco.error;
       return;
     }
-    // Never closed: the process may keep using models it made.
-    loaded = find(handle, "mj_loadXML", library.loadXML, load_error) &&
-             find(handle, "mj_deleteModel", library.deleteModel, load_error) &&
-             find(handle, "mj_makeData", library.makeData, load_error) &&
-             find(handle, "mj_deleteData", library.deleteData, load_error) &&
-             find(handle, "mj_forward", library.forward, load_error) &&
-             find(handle, "mj_step", library.step, load_error) &&
-             find(handle, "mj_resetData", library.resetData, load_error) &&
-             find(handle, "mj_resetDataKeyframe", library.resetDataKeyframe, load_error) &&
-             find(handle, "mj_name2id", library.name2id, load_error) &&
-             find(handle, "mj_id2name", library.id2name, load_error) &&
-             find(handle, "mj_solveM", library.solveM, load_error) &&
-             find_variable(handle, "mju_user_warning", library.user_warning, load_error) &&
-             find_variable(handle, "mju_user_error", library.user_error, load_error);
+    loaded = mujoco.find("mj_loadXML", library.loadXML, load_error) &&
+             mujoco.find("mj_deleteModel", library.deleteModel, load_error) &&
+             mujoco.find("mj_makeData", library.makeData, load_error) &&
+             mujoco.find("mj_deleteData", library.deleteData, load_error) &&
+             mujoco.find("mj_forward", library.forward, load_error) &&
+             mujoco.find("mj_step", library.step, load_error) &&
+             mujoco.find("mj_resetData", library.resetData, load_error) &&
+             mujoco.find("mj_resetDataKeyframe", library.resetDataKeyframe, load_error) &&
+             mujoco.find("mj_name2id", library.name2id, load_error) &&
+             mujoco.find("mj_id2name", library.id2name, load_error) &&
+             mujoco.find("mj_solveM", library.solveM, load_error) &&
+             find_variable(mujoco, "mju_user_warning", library.user_warning, load_error) &&
+             find_variable(mujoco, "mju_user_error", library.user_error, load_error);
   });
   if (!loaded) error = load_error;
   return loaded ? &library : nullptr;

@@ -11,10 +11,12 @@
 
 #include <mujoco/mujoco.h>
 
-#include <csetjmp>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "mujoco_support/error_trap.h"
 
 namespace openplx::mjcf {
 
@@ -38,14 +40,6 @@ struct MuJoCoLibrary {
 // Loaded on first use; nullptr when it cannot be, with `error` saying why.
 const MuJoCoLibrary* mujoco_library(std::string& error);
 
-namespace detail {
-struct ErrorJump {
-  sigjmp_buf target;
-  char message[1024];
-};
-ErrorJump*& current_error_jump();  // thread-local: where this thread's MuJoCoMessages::call lands on an error
-}  // namespace detail
-
 // While one is alive on a thread, MuJoCo's warnings raised on that thread are kept in `warnings` (nested
 // ones: the innermost). Handlers are installed when the first one in the process starts and the ones before
 // them (a user's, the runtime's) are put back when the last one ends; a warning from another thread meanwhile
@@ -62,24 +56,11 @@ class MuJoCoMessages {
   // before it resets mjData, so this is where the values that blew up can still be read.
   std::function<void(const char* text)> on_warning;
 
-  // Runs `call` (calls into MuJoCo's C functions; nothing in it may need a destructor: an error leaves it by
-  // longjmp) so that an mju_error inside it returns false with `error` set, instead of exiting the process.
-  // MuJoCo may have left `d` half done (its stack pointer is put back): delete it.
+  // Runs `call` so that an mju_error inside it returns false with `error` set instead of ending the
+  // process (mujoco_support/error_trap.h says what `call` may hold and what becomes of `d`).
   template <typename Call>
   bool call(mjData* d, Call&& call, std::string& error) {
-    detail::ErrorJump jump;
-    detail::ErrorJump* const outer = detail::current_error_jump();
-    const int stack = d ? d->pstack : 0;
-    detail::current_error_jump() = &jump;
-    if (sigsetjmp(jump.target, 0) == 0) {
-      call();
-      detail::current_error_jump() = outer;
-      return true;
-    }
-    detail::current_error_jump() = outer;
-    if (d) d->pstack = stack;
-    error = jump.message;
-    return false;
+    return mujoco_support::call_trapped(d, std::forward<Call>(call), error);
   }
 
  private:

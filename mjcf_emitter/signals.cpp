@@ -40,8 +40,8 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
   emit_lidars();
   // Counted once: a count per enabled signal was quadratic in a robot's joints.
   for (const auto& [interaction, joint] : range_joints_) ++ranges_on_joint_[joint];
-  out.reserve(out.size() + view_.signals.size());
-  for (const sn::Signal& s : view_.signals) {  // each binding made in place, never moved
+  out.reserve(out.size() + system_.signals.size());
+  for (const sn::Signal& s : system_.signals) {  // each binding made in place, never moved
     SignalBinding& b = out.emplace_back();
     if (s.composite) continue;
     identify(b, s);
@@ -53,15 +53,15 @@ void Lowering::bind_signals(Element& root, std::vector<SignalBinding>& out) {
     }
   }
   // Composites after their parts.
-  for (size_t k = 0; k < view_.signals.size(); ++k) {
-    if (!view_.signals[k].composite) continue;
+  for (size_t k = 0; k < system_.signals.size(); ++k) {
+    if (!system_.signals[k].composite) continue;
     SignalBinding b;  // apart from `out` until done: it reads its parts there
-    identify(b, view_.signals[k]);
-    bind_composite(view_.signals[k], out, b);
+    identify(b, system_.signals[k]);
+    bind_composite(system_.signals[k], out, b);
     out[k] = std::move(b);
   }
-  for (size_t k = 0; k < view_.signals.size(); ++k) {
-    const sn::Signal& s = view_.signals[k];
+  for (size_t k = 0; k < system_.signals.size(); ++k) {
+    const sn::Signal& s = system_.signals[k];
     SignalBinding& b = out[k];
     // Inputs a bundle model declares on every instance (a body's velocity inputs) are not warned about;
     // an input the user declared is theirs, and dropping it silently would hide it.
@@ -178,7 +178,7 @@ void Lowering::bind(const sn::Signal& s, SignalBinding& b) {
     case Source::Other:
       // A steering system itself (RackAndPinion's, BellCrank's): its angle is its interaction's.
       for (const auto& [k, elements] : steering_) {
-        const std::string& path = view_.interactions[k].path;
+        const std::string& path = system_.interactions[k].path;
         if (path.size() == s.source_path.size() + 12 && path.starts_with(s.source_path) &&
             path.ends_with(".interaction"))
           return bind_interaction(b, stem, k);
@@ -186,12 +186,12 @@ void Lowering::bind(const sn::Signal& s, SignalBinding& b) {
       break;
   }
   return unmapped(b, "its source `" +
-                         (s.source_kind == Source::Shaft ? view_.shafts[s.source].path : s.source_path) +
+                         (s.source_kind == Source::Shaft ? system_.shafts[s.source].path : s.source_path) +
                          "` has no MuJoCo element");
 }
 
 void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) {
-  const sn::Interaction1D& i = view_.interactions[k];
+  const sn::Interaction1D& i = system_.interactions[k];
   if (auto range = distance_tendons_.find(k); range != distance_tendons_.end()) {
     const bool motor = i.kind == sn::Interaction1D::Kind::DistanceMotor;
     if (stem == "Position1D" && !b.input)
@@ -257,7 +257,7 @@ void Lowering::bind_interaction(SignalBinding& b, std::string_view stem, int k) 
 // The enabled state of a motor, spring or range: what the runtime zeroes to switch it off, and the effort
 // range (a range's limits) it restores.
 void Lowering::bind_enabled(SignalBinding& b, int k) {
-  const sn::Interaction1D& i = view_.interactions[k];
+  const sn::Interaction1D& i = system_.interactions[k];
   b.initial = i.enabled ? 1.0 : 0.0;
   if (auto e = effort_ranges_.find(k); e != effort_ranges_.end()) {
     mapped(b, Quantity::InteractionEnabled, MjObject::Actuator, name(i.path));
@@ -285,7 +285,7 @@ void Lowering::bind_enabled(SignalBinding& b, int k) {
 // A drivetrain part's signals: gears' torques and ratios, clutches' and brakes' torque (the friction row's
 // force), slip velocity and engagement; the rest in bind_drive_part.
 void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
-  const sn::DriveCoupling& c = view_.couplings[k];
+  const sn::DriveCoupling& c = system_.couplings[k];
   if (bind_drive_part(b, stem, k)) return;
   if (auto gear = gear_equalities_.find(k); gear != gear_equalities_.end()) {
     if (stem == "Torque1D" && !b.input)  // the torque the equality puts on the output shaft
@@ -353,7 +353,7 @@ void Lowering::bind_coupling(SignalBinding& b, std::string_view stem, int k) {
 
 void Lowering::bind_mate(SignalBinding& b, std::string_view stem, const sn::Signal& s) {
   const int m = s.source;
-  const sn::Mate& mate = view_.mates[m];
+  const sn::Mate& mate = system_.mates[m];
   if (auto distance = distance_mates_.find(m);
       distance != distance_mates_.end() && stem != "EnableInteraction" && stem != "InteractionEnabled") {
     // Any position input sets the target distance; the mate's own target output reads it back.
@@ -427,8 +427,8 @@ void Lowering::bind_mate(SignalBinding& b, std::string_view stem, const sn::Sign
 }
 
 void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
-  std::string body = name(view_.nodes[n].path);  // moved into the binding that names it
-  if (!body_element_.count(n)) return unmapped(b, concat({"`", view_.nodes[n].path, "` was not emitted"}));
+  std::string body = name(system_.nodes[n].path);  // moved into the binding that names it
+  if (!body_element_.count(n)) return unmapped(b, concat({"`", system_.nodes[n].path, "` was not emitted"}));
   if (b.input) {
     if (stem == "Torque3D") return bind_body_torque(b, n, std::move(body));
     const bool linear = stem == "LinearVelocity3D";
@@ -436,7 +436,7 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
       return unmapped(b, concat({"a body takes velocity and torque inputs; ", stem, " is neither"}));
     }
     if (mocap_.count(n)) {  // starting at the body's initial velocity, in world axes
-      const sn::FrameNode& node = view_.nodes[n];
+      const sn::FrameNode& node = system_.nodes[n];
       const Eigen::Matrix3d system = node.parent >= 0
                                          ? snap_.node_world[node.parent].rotation.toRotationMatrix()
                                          : Eigen::Matrix3d::Identity();
@@ -450,7 +450,7 @@ void Lowering::bind_body(SignalBinding& b, std::string_view stem, int n) {
       return mapped(b, linear ? Quantity::FreeLinearVelocity : Quantity::FreeAngularVelocity, MjObject::Joint,
                     std::move(body));
     }
-    return unmapped(b, concat({"`", view_.nodes[n].path,
+    return unmapped(b, concat({"`", system_.nodes[n].path,
                                "` moves through its joints in MuJoCo; its velocity cannot be set"}));
   }
   const Quantity q = stem == "Position3D" || stem == "Position" ? Quantity::BodyPosition
@@ -495,7 +495,7 @@ void Lowering::bind_connector(SignalBinding& b, std::string_view stem, const sn:
 // A Torque3DInput on a body: a pure torque through xfrc_applied, which moves only a body with degrees of
 // freedom of its own.
 void Lowering::bind_body_torque(SignalBinding& b, int n, std::string body) {
-  const std::string& path = view_.nodes[n].path;
+  const std::string& path = system_.nodes[n].path;
   if (is_static(n)) {
     return unmapped(
         b,
@@ -511,7 +511,7 @@ void Lowering::bind_body_torque(SignalBinding& b, int n, std::string body) {
 
 // A site at a mate connector, in the MuJoCo body that carries it (the world for system connectors).
 std::string Lowering::site_for(int c) {
-  const std::string site = name(view_.connectors[c].path);
+  const std::string site = name(system_.connectors[c].path);
   if (!sites_.insert(c).second) return site;
   const auto [parent, frame] = connector_mount(c);
   parent->add("site").set("name", site).set("pos", frame.position).set_quat("quat", frame.rotation);
@@ -523,7 +523,7 @@ std::string Lowering::site_for(int c) {
 std::pair<Element*, sn::Transform> Lowering::connector_mount(int c) {
   const int owner = vertex_of_connector(c);
   auto body = body_element_.find(owner);
-  if (owner >= 0 && body != body_element_.end()) return {body->second, view_.connectors[c].local};
+  if (owner >= 0 && body != body_element_.end()) return {body->second, system_.connectors[c].local};
   return {world_, snap_.connector_world[c]};
 }
 

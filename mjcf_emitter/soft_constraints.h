@@ -1,4 +1,4 @@
-// Flexible loop-closing mates as soft MuJoCo equalities (spec/mjcf-mapping.md §4.2). MuJoCo's solref is
+// Flexible loop-closing mates as soft MuJoCo equalities (docs/mapping.md "Mate softness"). MuJoCo's solref is
 // mass-normalised: with direct solref (-ks, -bs) and flat impedance d, a constraint row behaves like a spring
 // k = ks / ((1 - d) dA) and a damper b = bs / ((1 - d) dA), dA being MuJoCo's inverse-inertia estimate of the
 // row (body_invweight0, translational, summed over both bodies). So solref = (-k (1-d) dA, -b (1-d) dA). A
@@ -39,7 +39,7 @@ struct SoftEqualityResult {
 };
 
 // Writes solref/solimp (and torquescale) on every pending equality from the draft's body_invweight0, by the
-// law of the target MuJoCo (spec/mujoco3-notes.md 4.2.4-4.2.5): 3.x takes dA = 1/m for "simple" bodies and
+// law of the target MuJoCo (docs/mapping.md "MuJoCo versions"): 3.x takes dA = 1/m for "simple" bodies and
 // applies torquescale squared against the rotational dA, where 2.2.2 used the translational dA for all rows.
 SoftEqualityResult apply_soft_equalities(const DraftModel& draft,
                                          const std::vector<PendingSoftEquality>& pending, double timestep,

@@ -35,7 +35,7 @@ void Lowering::emit_spring(Element& root, Element& actuators, const sn::Interact
       .set("biasprm", "0 " + number(-k) + " " + number(clamped_damping ? -b : 0.0));
   effort_limits(a, i);
   if (!i.enabled) a.set("gear", "0");  // transmits nothing until its enable input restores the gear
-  const int index = index_in(view_.interactions, i);
+  const int index = index_in(system_.interactions, i);
   effort_ranges_[index] = effort_range(i);
   actuator_ctrl_[index] = {static_cast<int>(actuator_count_++), i.rest};
   springs_[index] = spring;

@@ -11,8 +11,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "contract/steering_linkage.h"
 #include "mjcf_emitter/lowering.h"
-#include "mjcf_emitter/steering_linkage.h"
 
 namespace openplx::mjcf {
 namespace {
@@ -76,8 +76,8 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
     return;
   }
   // The track: between the two kingpins, the suspensions' chassis connectors.
-  const sn::Mate& left = view_.mates[i.steered[0]];
-  const sn::Mate& right = view_.mates[i.steered[1]];
+  const sn::Mate& left = system_.mates[i.steered[0]];
+  const sn::Mate& right = system_.mates[i.steered[1]];
   const Eigen::Vector3d kl = snap_.connector_world[left.connectors[0]].position;
   const Eigen::Vector3d kr = snap_.connector_world[right.connectors[0]].position;
   SteeringGeometry g;
@@ -126,7 +126,7 @@ void Lowering::emit_steering(Element& root, const sn::Interaction1D& i) {
       .set("joint1", *joints[1]->get("name"))
       .set("joint2", *joints[0]->get("name"))
       .set("polycoef", coefficients(fit.linkage.c));
-  SteeringElements& elements = steering_[index_in(view_.interactions, i)];
+  SteeringElements& elements = steering_[index_in(system_.interactions, i)];
   elements = {base + ".angle", *joints[0]->get("name"), fit.linkage.max_error, {}, fit.low, fit.high};
   if (g.mechanism != SteeringMechanism::Ackermann || !closes) elements.input_polynomial = fit.input_to_left.c;
 }

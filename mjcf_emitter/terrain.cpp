@@ -5,7 +5,7 @@
 namespace openplx::mjcf {
 
 void Lowering::emit_terrains() {
-  for (const sn::Terrain& t : view_.terrains) {
+  for (const sn::Terrain& t : system_.terrains) {
     constexpr double kMaxPoints = 1e7;  // 80 MB of heights in MuJoCo: beyond that, a typo, not a terrain
     if (t.num_x < 2 || t.num_y < 2 || !(t.element_size > 0) ||
         static_cast<double>(t.num_x) * t.num_y > kMaxPoints) {

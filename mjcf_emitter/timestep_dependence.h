@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 #include "mjcf_emitter/xml.h"
 
 namespace openplx::mjcf {

@@ -88,7 +88,7 @@ class BeltLine {
 
 void Lowering::emit_tracks(Element& root) {
   int64_t links = 0;  // of the tracks emitted
-  for (const sn::TrackSystem& t : view_.tracks) {
+  for (const sn::TrackSystem& t : system_.tracks) {
     const bool wheels_known = std::all_of(t.wheels.begin(), t.wheels.end(), [](const auto& w) {
       return w.connector >= 0 && w.radius > 0 && std::isfinite(w.radius);
     });
@@ -183,7 +183,7 @@ void Lowering::emit_tracks(Element& root) {
           .set("pos", Eigen::Vector3d(chords[k] / 2, 0, 0))
           .set("mass", mass);
       if (t.chassis >= 0 && body_element_.count(t.chassis))
-        contact->add("exclude").set("body1", name(view_.nodes[t.chassis].path)).set("body2", names[k]);
+        contact->add("exclude").set("body1", name(system_.nodes[t.chassis].path)).set("body2", names[k]);
       parent = &body;
     }
     // Each chain's last link holds the next chain's root (the last chain the first): two points on the

@@ -45,18 +45,18 @@ bool Lowering::joint_mapped(const sn::Mate& mate) const {
 // Prim's algorithm from the world (and static bodies) over the enabled mates, cheapest edge first; components
 // the world does not reach get a free joint at their first declared body.
 void Lowering::choose_tree() {
-  edges_.assign(view_.nodes.size(), TreeEdge{});
-  in_tree_.assign(view_.nodes.size(), false);
-  std::vector<bool> has_interactions(view_.mates.size(), false);
-  for (const sn::Interaction1D& i : view_.interactions) {
+  edges_.assign(system_.nodes.size(), TreeEdge{});
+  in_tree_.assign(system_.nodes.size(), false);
+  std::vector<bool> has_interactions(system_.mates.size(), false);
+  for (const sn::Interaction1D& i : system_.interactions) {
     if (i.mate >= 0) has_interactions[i.mate] = true;
   }
-  for (const sn::Signal& signal : view_.signals) {  // a read mate needs a joint to read
+  for (const sn::Signal& signal : system_.signals) {  // a read mate needs a joint to read
     if (signal.input || !signal.enabled) continue;
     if (signal.source_kind == sn::SignalSource::Mate) has_interactions[signal.source] = true;
   }
-  for (size_t m = 0; m < view_.mates.size(); ++m) {
-    const sn::Mate& mate = view_.mates[m];
+  for (size_t m = 0; m < system_.mates.size(); ++m) {
+    const sn::Mate& mate = system_.mates[m];
     if (mate.connectors[0] < 0 || mate.connectors[1] < 0) continue;
     if (mate.type == sn::MateType::Distance) continue;  // a tendon constraint (emit_distance_mates)
     if (!joint_mapped(mate)) {
@@ -68,7 +68,7 @@ void Lowering::choose_tree() {
     const int b = vertex_of_connector(mate.connectors[1]);
     if (a == b) {
       warn(mate.where, "`" + mate.path + "` joins two connectors of " +
-                           (a >= 0 ? "the same body `" + view_.nodes[a].path + "`" : "the world") +
+                           (a >= 0 ? "the same body `" + system_.nodes[a].path + "`" : "the world") +
                            "; there is nothing for MuJoCo to constrain, so it was left out");
       continue;
     }
@@ -86,7 +86,7 @@ void Lowering::choose_tree() {
   // that its enable input can switch on, and its bodies move as if it were not there.
   auto reach = [&](int vertex) {
     for (int k : incident[vertex]) {
-      if (view_.mates[adjacency_[k].mate].enabled) queue.emplace(adjacency_[k].cost, adjacency_[k].mate, k);
+      if (system_.mates[adjacency_[k].mate].enabled) queue.emplace(adjacency_[k].cost, adjacency_[k].mate, k);
     }
   };
   auto grow = [&]() {
@@ -106,14 +106,14 @@ void Lowering::choose_tree() {
     }
   };
   reach(kWorldVertex);
-  for (size_t n = 0; n < view_.nodes.size(); ++n) {
+  for (size_t n = 0; n < system_.nodes.size(); ++n) {
     if (is_static(static_cast<int>(n))) {
       in_tree_[n] = true;
       reach(static_cast<int>(n));
     }
   }
   grow();
-  for (size_t n = 0; n < view_.nodes.size(); ++n) {
+  for (size_t n = 0; n < system_.nodes.size(); ++n) {
     if (!is_body(static_cast<int>(n)) || in_tree_[n]) continue;
     in_tree_[n] = true;  // a floating component: free joint at its first declared body
     free_roots_.insert(static_cast<int>(n));

@@ -43,7 +43,7 @@ void Lowering::emit_velocity_motor(Element& root, const sn::Interaction1D& i, co
              "express; it was limited at " +
              number(open_below ? lo : hi));
   }
-  const int k = index_in(view_.interactions, i);
+  const int k = index_in(system_.interactions, i);
   effort_ranges_[k] = {lo, hi};
   Element* tendons = root.child("tendon");
   if (!tendons) tendons = &root.add("tendon");
@@ -122,7 +122,7 @@ void Lowering::finish_servo_gains(const DraftModel& draft) {
 }
 
 bool Lowering::has_range_input(int interaction) const {
-  return std::any_of(view_.signals.begin(), view_.signals.end(), [&](const sn::Signal& s) {
+  return std::any_of(system_.signals.begin(), system_.signals.end(), [&](const sn::Signal& s) {
     return s.input && s.source_kind == sn::SignalSource::Interaction && s.source == interaction &&
            any_of(signal_stem(s.type), {"TorqueRange", "ForceRange"});
   });

@@ -3,27 +3,15 @@
 // always gives the same bytes.
 #pragma once
 
-#include <Eigen/Dense>
-#include <initializer_list>
+#include <concepts>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
-namespace openplx::mjcf {
+#include "contract/numbers.h"
 
-// Shortest text that reads back as the same double ("0.5", "1e-07", "-0"); never locale-dependent.
-std::string number(double value);
-// Appends number(value) to `out`, with no string of its own.
-void append_number(std::string& out, double value);
-// Writes number(value) at `at`, which has room for kNumberChars, and returns the end of what it wrote.
-inline constexpr size_t kNumberChars = 32;  // the longest double ("-1.7976931348623157e+308") is 24
-char* write_number(char* at, double value);
-// Numbers separated by single spaces ("0 0 1.5"), as MJCF writes vectors.
-std::string numbers(std::initializer_list<double> values);
-// How many NaNs and infinities write_number has written on this thread: none may reach an MJCF (MuJoCo
-// reads them, then fails or blows up), so the emitter counts them as a backstop behind the value checks.
-size_t non_finite_numbers_written();
+namespace openplx::mjcf {
 
 class Element {
  public:
@@ -32,9 +20,20 @@ class Element {
   Element& set(std::string_view key, std::string value);
   Element& set(std::string_view key, double value) { return set(key, number(value)); }
   Element& set(std::string_view key, int value) { return set(key, std::to_string(value)); }
-  Element& set(std::string_view key, const Eigen::Vector3d& v);
-  Element& set_quat(std::string_view key, const Eigen::Quaterniond& q);  // "w x y z", w >= 0
-  Element& add(std::string name);                                        // appends a child and returns it
+  // Any vector with x(), y(), z() (Eigen's among them: this header does not need Eigen).
+  template <typename Vector>
+  requires requires(const Vector& v) {
+    { v.z() } -> std::convertible_to<double>;
+  }
+  Element& set(std::string_view key, const Vector& v) { return set(key, numbers({v.x(), v.y(), v.z()})); }
+  // A quaternion (Eigen's), normalised, as "w x y z" with w >= 0 (q and -q are the same rotation).
+  template <typename Quaternion>
+  Element& set_quat(std::string_view key, const Quaternion& q) {
+    const auto n = q.normalized();
+    const double s = n.w() < 0 ? -1.0 : 1.0;
+    return set(key, numbers({s * n.w(), s * n.x(), s * n.y(), s * n.z()}));
+  }
+  Element& add(std::string name);  // appends a child and returns it
   Element& add(Element child);
 
   const std::string& name() const { return name_; }

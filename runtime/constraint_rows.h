@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 
 namespace openplx::runtime {
 

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 
 namespace openplx::runtime {
 

@@ -77,12 +77,12 @@ LoadedModel load_model(const std::string& path, const std::string& model,
   LoadedModel loaded;
   mjcf::Emitted emitted;
   if (evaluation.root != fe::kNoObject && !sink.has_errors()) {
-    snap::ResolvedSystem view = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-    snap::run_snap(view, sink);
+    snap::ResolvedSystem system = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+    snap::run_snap(system, sink);
     mjcf::EmitOptions options;
     options.model_name = evaluation.evaluator->root_name();
     options.timestep = timestep;
-    emitted = mjcf::emit_mjcf(view, options, sink);
+    emitted = mjcf::emit_mjcf(system, options, sink);
     loaded.root_name = options.model_name;
   }
   for (const fe::Diagnostic& d : sink.diagnostics()) {

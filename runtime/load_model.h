@@ -1,5 +1,6 @@
-// From an .openplx file to a loaded MuJoCo model: the whole transpiler in-process (front end, physics view,
-// SNAP, MJCF emitter), then mj_loadXML. Mesh paths in the MJCF are absolute, so the XML may live anywhere.
+// From an .openplx file to a loaded MuJoCo model: the whole transpiler in-process (front end, resolved
+// system, SNAP, MJCF emitter), then mj_loadXML. Mesh paths in the MJCF are absolute, so the XML may live
+// anywhere.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -7,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 
 namespace openplx::runtime {
 

@@ -1,9 +1,6 @@
 #include "runtime/mujoco_messages.h"
 
-#include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <mutex>
 
 namespace openplx::runtime {
@@ -18,17 +15,6 @@ void on_warning(const char* text) {
   }
 }
 
-[[noreturn]] void on_error(const char* text) {
-  if (ErrorJump* jump = current_jump()) {
-    std::snprintf(jump->message, sizeof(jump->message), "%s", text);
-    siglongjmp(jump->target, 1);
-  }
-  // Not inside the runtime's own call: MuJoCo may not be returned to, and nothing above can be unwound.
-  std::fprintf(stderr, "MuJoCo error: %s\n", text);
-  std::fflush(stderr);
-  std::exit(EXIT_FAILURE);
-}
-
 }  // namespace
 
 MessageSink*& current_sink() {
@@ -36,20 +22,15 @@ MessageSink*& current_sink() {
   return sink;
 }
 
-ErrorJump*& current_jump() {
-  thread_local ErrorJump* jump = nullptr;
-  return jump;
-}
-
 void install_mujoco_handlers() {
   static std::mutex mutex;
   const std::lock_guard<std::mutex> lock(mutex);
   if (!mju_user_warning) mju_user_warning = on_warning;
-  if (!mju_user_error) mju_user_error = on_error;
+  if (!mju_user_error) mju_user_error = mujoco_support::trap_error;
 }
 
 bool mujoco_handlers_installed() {
-  return mju_user_warning == on_warning && mju_user_error == on_error;
+  return mju_user_warning == on_warning && mju_user_error == mujoco_support::trap_error;
 }
 
 }  // namespace openplx::runtime

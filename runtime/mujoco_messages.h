@@ -14,8 +14,10 @@
 
 #include <mujoco/mujoco.h>
 
-#include <csetjmp>
 #include <string>
+#include <utility>
+
+#include "mujoco_support/error_trap.h"
 
 namespace openplx::runtime {
 
@@ -31,30 +33,11 @@ struct MessageSink {
 };
 MessageSink*& current_sink();  // thread-local
 
-struct ErrorJump {
-  std::jmp_buf target;
-  char message[1024];
-};
-ErrorJump*& current_jump();  // thread-local
-
-// Calls `call` (a call into MuJoCo, holding nothing with a destructor: a longjmp may leave it) so that an
-// mju_error inside lands here: returns false with `error` set. d->pstack, which a jump out of MuJoCo leaves
-// raised, is put back.
+// Calls `call` (calls into MuJoCo) so that an mju_error inside it returns false with `error` set: the trap
+// the converter uses too (mujoco_support/error_trap.h, which says what `call` may hold).
 template <typename Call>
 bool call_mujoco(mjData* d, Call&& call, std::string& error) {
-  ErrorJump jump;
-  ErrorJump* const outer = current_jump();
-  const int stack = d ? d->pstack : 0;
-  current_jump() = &jump;
-  if (sigsetjmp(jump.target, 0) == 0) {
-    call();
-    current_jump() = outer;
-    return true;
-  }
-  current_jump() = outer;
-  if (d) d->pstack = stack;
-  error = jump.message;
-  return false;
+  return mujoco_support::call_trapped(d, std::forward<Call>(call), error);
 }
 
 }  // namespace openplx::runtime

@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <utility>
 
-#include "frontend/semantics/edit_distance.h"
+#include "contract/edit_distance.h"
 
 namespace openplx::runtime {
 namespace {
-
-using frontend::edit_distance;
 
 std::string_view last_segment(std::string_view path) {
   const size_t dot = path.rfind('.');

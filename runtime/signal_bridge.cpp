@@ -5,9 +5,9 @@
 #include <set>
 #include <utility>
 
-#include "mjcf_emitter/model_fingerprint.h"
-#include "mjcf_emitter/xml.h"
-#include "runtime/manifest_reader.h"
+#include "contract/manifest_reader.h"
+#include "contract/model_fingerprint.h"
+#include "contract/numbers.h"
 #include "runtime/mujoco_messages.h"
 #include "runtime/row_hook.h"
 #include "runtime/signal_conversions.h"
@@ -30,7 +30,7 @@ bool composed(mjcf::Quantity q) {
 }
 
 // Every MuJoCo element the manifest names that `model` lacks, as "kind `name`".
-std::vector<std::string> missing_elements(const Manifest& read, const mjModel* model, size_t& named) {
+std::vector<std::string> missing_elements(const mjcf::Manifest& read, const mjModel* model, size_t& named) {
   std::set<std::pair<mjcf::MjObject, std::string>> wanted;
   for (const mjcf::SignalBinding& b : read.signals) {
     if (b.quantity == mjcf::Quantity::None || composed(b.quantity)) continue;
@@ -49,7 +49,7 @@ std::vector<std::string> missing_elements(const Manifest& read, const mjModel* m
 }
 
 // The bodies in the trees (below a child of the world) of the bodies, joints and sites the manifest names.
-std::vector<bool> named_trees(const Manifest& read, const mjModel* model) {
+std::vector<bool> named_trees(const mjcf::Manifest& read, const mjModel* model) {
   std::vector<bool> roots(static_cast<size_t>(model->nbody), false), trees(roots.size(), false);
   for (const mjcf::SignalBinding& b : read.signals) {
     if (b.quantity == mjcf::Quantity::None || composed(b.quantity)) continue;
@@ -81,7 +81,12 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
                                   const std::string& prefix) {
   if (!model || !data) throw LoadError(manifest + ": error: a bridge needs a model and its data\n");
   install_mujoco_handlers();
-  Manifest read = read_manifest(manifest);
+  mjcf::Manifest read;
+  try {
+    read = mjcf::read_manifest(manifest);
+  } catch (const mjcf::ManifestError& e) {
+    throw LoadError(e.what());
+  }
   // Names carry the prefix they were emitted with; another one given here replaces it.
   if (!prefix.empty() && prefix != read.prefix) {
     auto rename = [&](std::string& name) {

@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <string_view>
 
-#include "mjcf_emitter/signal_binding.h"
-#include "openplx/runtime/simulation.h"
+#include "contract/signal_binding.h"
+#include "openplx/runtime/signals.h"
 
 namespace openplx::runtime {
 

@@ -2,8 +2,8 @@
 #include <Eigen/Geometry>
 #include <string>
 
-#include "mjcf_emitter/steering_linkage.h"
-#include "runtime/mujoco_compat.h"
+#include "contract/steering_linkage.h"
+#include "mujoco_support/mujoco_compat.h"
 #include "runtime/rotation.h"
 #include "runtime/signal_conversions.h"
 #include "runtime/simulation_state.h"

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <string>
 
-#include "mjcf_emitter/steering_linkage.h"
-#include "mjcf_emitter/xml.h"
-#include "runtime/mujoco_compat.h"
+#include "contract/numbers.h"
+#include "contract/steering_linkage.h"
+#include "mujoco_support/mujoco_compat.h"
 #include "runtime/signal_conversions.h"
 #include "runtime/simulation_state.h"
 

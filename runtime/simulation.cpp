@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "mjcf_emitter/xml.h"
+#include "contract/numbers.h"
 #include "openplx/runtime/signal_bridge.h"
 #include "runtime/load_model.h"
 #include "runtime/mujoco_messages.h"

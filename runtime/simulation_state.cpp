@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mjcf_emitter/xml.h"
-#include "runtime/mujoco_compat.h"
+#include "contract/numbers.h"
+#include "mujoco_support/mujoco_compat.h"
 #include "runtime/name_suggestions.h"
 #include "runtime/row_hook.h"
 #include "runtime/signal_conversions.h"

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "mjcf_emitter/instability.h"
-#include "mjcf_emitter/signal_binding.h"
-#include "openplx/runtime/simulation.h"
+#include "contract/signal_binding.h"
+#include "mujoco_support/instability.h"
+#include "openplx/runtime/signals.h"
 #include "runtime/constraint_rows.h"
 #include "runtime/drive_laws.h"
 #include "runtime/frame_motion.h"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <string>
 
-#include "runtime/mujoco_compat.h"
+#include "mujoco_support/mujoco_compat.h"
 #include "runtime/signal_conversions.h"
 #include "runtime/simulation_state.h"
 

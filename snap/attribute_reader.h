@@ -53,7 +53,7 @@ class SlotTable {
 };
 
 // Attributes are named (a string) or found ahead (an AttributeSlot). A read by slot marks the attribute used
-// only while the evaluator tracks reads, as it does while resolve_system builds the view.
+// only while the evaluator tracks reads, as it does while resolve_system builds the resolved system.
 class AttributeReader {
  public:
   explicit AttributeReader(frontend::Evaluator& evaluator, frontend::DiagnosticSink* sink = nullptr)

@@ -1,5 +1,5 @@
 // Where each object is declared, as the user sees it, and its path in the tree: what every diagnostic and
-// every resolved element of the view is named by.
+// every resolved element of the system is named by.
 #include <optional>
 #include <string>
 #include <tuple>

@@ -40,15 +40,15 @@ void SystemBuilder::read_body(fe::ObjectId id, BodyProperties& body) {
 // it lists are kinematic, as `is_dynamic: false` makes them.
 void SystemBuilder::apply_kinematic_control() {
   std::unordered_map<fe::ObjectId, size_t> node_of;
-  for (size_t k = 0; k < view_.nodes.size(); ++k) node_of[view_.nodes[k].object] = k;
-  for (size_t k = 0; k < view_.nodes.size(); ++k) {
-    if (view_.nodes[k].kind != FrameNode::Kind::System) continue;
-    const fe::Value* list = ev_.value(view_.nodes[k].object, "kinematically_controlled");
+  for (size_t k = 0; k < system_.nodes.size(); ++k) node_of[system_.nodes[k].object] = k;
+  for (size_t k = 0; k < system_.nodes.size(); ++k) {
+    if (system_.nodes[k].kind != FrameNode::Kind::System) continue;
+    const fe::Value* list = ev_.value(system_.nodes[k].object, "kinematically_controlled");
     if (!list || list->kind != fe::Value::Kind::Array) continue;
     for (const fe::Value& v : list->array()) {
       auto it = v.kind == fe::Value::Kind::Object ? node_of.find(v.object) : node_of.end();
-      if (it != node_of.end() && view_.nodes[it->second].kind == FrameNode::Kind::Body)
-        view_.nodes[it->second].body.dynamic = false;
+      if (it != node_of.end() && system_.nodes[it->second].kind == FrameNode::Kind::Body)
+        system_.nodes[it->second].body.dynamic = false;
     }
   }
 }
@@ -131,25 +131,25 @@ bool SystemBuilder::read_transform(fe::ObjectId id, Transform& out) {
 int SystemBuilder::add_node(fe::ObjectId id, int parent, bool is_root) {
   FrameNode node;
   node.kind =
-      ev_.graph().at(id).type->is_subtype_of(system_) ? FrameNode::Kind::System : FrameNode::Kind::Body;
+      ev_.graph().at(id).type->is_subtype_of(system_model_) ? FrameNode::Kind::System : FrameNode::Kind::Body;
   node.object = id;
   node.parent = parent;
   node.path = path_of(id);
   node.defined = read_transform(id, node.local) || is_root;  // the root frame never moves
   node.where = where_of(id);
   if (node.kind == FrameNode::Kind::Body) read_body(id, node.body);
-  const int index = static_cast<int>(view_.nodes.size());
-  if (is_root) view_.root = index;
+  const int index = static_cast<int>(system_.nodes.size());
+  if (is_root) system_.root = index;
   node_of_[id] = index;
-  view_.nodes.push_back(std::move(node));
-  view_.order.emplace_back(true, index);
+  system_.nodes.push_back(std::move(node));
+  system_.order.emplace_back(true, index);
   // A system's reference body is forced first when SNAP has to choose.
-  if (view_.nodes[index].kind == FrameNode::Kind::System) {
+  if (system_.nodes[index].kind == FrameNode::Kind::System) {
     const fe::Value* ref = ev_.value(id, "reference_body");
     if (ref && ref->kind == fe::Value::Kind::Object) reference_bodies_.push_back(ref->object);
   }
   for (fe::ObjectId ref : reference_bodies_) {
-    if (ref == id) view_.nodes[index].reference = true;
+    if (ref == id) system_.nodes[index].reference = true;
   }
   return index;
 }
@@ -166,11 +166,11 @@ void SystemBuilder::add_connector(fe::ObjectId id, int owner, bool in_tree) {
   c.local = connector_frame(id, c.where);
   if (in_tree) {
     if (const fe::ObjectId parent = object(id, "redirected_parent"); parent != fe::kNoObject)
-      redirects_.emplace_back(static_cast<int>(view_.connectors.size()), parent);
+      redirects_.emplace_back(static_cast<int>(system_.connectors.size()), parent);
   }
-  connector_of_[id] = static_cast<int>(view_.connectors.size());
-  if (in_tree) view_.order.emplace_back(false, static_cast<int>(view_.connectors.size()));
-  view_.connectors.push_back(std::move(c));
+  connector_of_[id] = static_cast<int>(system_.connectors.size());
+  if (in_tree) system_.order.emplace_back(false, static_cast<int>(system_.connectors.size()));
+  system_.connectors.push_back(std::move(c));
 }
 
 Transform SystemBuilder::connector_frame(fe::ObjectId id, fe::SourceRange where) {
@@ -198,11 +198,11 @@ Transform SystemBuilder::connector_frame(fe::ObjectId id, fe::SourceRange where)
 // owner's frame and attached to `redirected_parent`. A parent below the owner through declared transforms
 // takes it here (a wheel's rim at the wheel's origin); any other body of the model (a vehicle's chassis
 // that SNAP places, a sibling system's body) takes it after assembly, keeping the world frame the
-// connector was assembled at (spec/snap.md 2.2: W(parent)⁻¹ ∘ W(owner) ∘ M). Until then it is on its
-// owner, as written: SNAP places the parts it joins from there.
+// connector was assembled at (W(parent)⁻¹ ∘ W(owner) ∘ M; docs/mapping.md "Redirected connectors"). Until
+// then it is on its owner, as written: SNAP places the parts it joins from there.
 void SystemBuilder::resolve_redirects() {
   for (const auto& [k, body] : redirects_) {
-    Connector& c = view_.connectors[k];
+    Connector& c = system_.connectors[k];
     auto it = node_of_.find(body);
     if (it == node_of_.end()) {
       sink_.report(fe::DiagCode::MjcfUnmapped, c.where,
@@ -213,13 +213,13 @@ void SystemBuilder::resolve_redirects() {
     if (it->second == c.owner) continue;
     Transform chain;  // the body's frame in the owner's
     bool below = false, declared = true;
-    for (int n = it->second; n != kWorld; n = view_.nodes[n].parent) {
+    for (int n = it->second; n != kWorld; n = system_.nodes[n].parent) {
       if (n == c.owner) {
         below = true;
         break;
       }
-      declared = declared && view_.nodes[n].defined;
-      chain = natives::affine_compose(view_.nodes[n].local, chain);
+      declared = declared && system_.nodes[n].defined;
+      chain = natives::affine_compose(system_.nodes[n].local, chain);
     }
     if (!below || !declared) {
       c.redirect_to = it->second;

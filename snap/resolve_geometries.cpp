@@ -72,7 +72,7 @@ void SystemBuilder::add_geometry(fe::ObjectId id, int owner) {
     g.in_mass = m->bool_value;
   }
   if (g.visual) g.collides = g.in_mass = false;
-  view_.geometries.push_back(std::move(g));
+  system_.geometries.push_back(std::move(g));
 }
 
 // ConvexMesh/TriMesh vertices (Math.Vec3 instances) and TriMesh triangle indices.
@@ -100,7 +100,7 @@ void SystemBuilder::read_mesh_data(fe::ObjectId id, Geometry& g) {
 // Urdf.PackagePath named P (anywhere: in the scene or in the robot); otherwise from where the import found
 // P.
 void SystemBuilder::resolve_packages() {
-  for (Geometry& g : view_.geometries) {
+  for (Geometry& g : system_.geometries) {
     const std::optional<fe::PackageUri> uri = fe::parse_package_uri(g.package_uri);
     auto it = uri ? packages_.find(uri->package) : packages_.end();
     if (it == packages_.end()) continue;
@@ -111,12 +111,12 @@ void SystemBuilder::resolve_packages() {
 // Materials by index, shared by geometries and contact models (the same material, the same index).
 int SystemBuilder::material_index(fe::ObjectId id) {
   if (id == fe::kNoObject) return -1;
-  auto [it, fresh] = material_of_.try_emplace(id, static_cast<int>(view_.materials.size()));
+  auto [it, fresh] = material_of_.try_emplace(id, static_cast<int>(system_.materials.size()));
   if (fresh) {
     const double density = in_.real(id, "density", 1000.0);
     in_.require(std::isfinite(density) && density >= 0, id, "density", density,
                 "a density is a finite number of kg/m^3, 0 or more");
-    view_.materials.push_back({id, density, where_of(id)});
+    system_.materials.push_back({id, density, where_of(id)});
   }
   return it->second;
 }
@@ -124,10 +124,10 @@ int SystemBuilder::material_index(fe::ObjectId id) {
 // Geometries' materials: a contact material by index, a visual one as its visual material.
 void SystemBuilder::resolve_materials() {
   std::unordered_map<fe::ObjectId, int> visual;
-  for (size_t k = 0; k < view_.visual_materials.size(); ++k)
-    visual[view_.visual_materials[k].object] = static_cast<int>(k);
-  for (size_t k = 0; k < view_.geometries.size(); ++k) {
-    Geometry& g = view_.geometries[k];
+  for (size_t k = 0; k < system_.visual_materials.size(); ++k)
+    visual[system_.visual_materials[k].object] = static_cast<int>(k);
+  for (size_t k = 0; k < system_.geometries.size(); ++k) {
+    Geometry& g = system_.geometries[k];
     g.material = material_index(geometry_materials_[k]);
     if (auto it = visual.find(geometry_materials_[k]); it != visual.end()) g.visual_material = it->second;
   }
@@ -142,8 +142,8 @@ CollisionGroup SystemBuilder::collision_group(fe::ObjectId group) {
   for (fe::ObjectId system : in_.objects(group, "systems"))
     if (auto it = node_of_.find(system); it != node_of_.end()) out.systems.push_back(it->second);
   const std::vector<fe::ObjectId> listed = in_.objects(group, "geometries");
-  for (size_t k = 0; k < view_.geometries.size(); ++k) {
-    if (std::find(listed.begin(), listed.end(), view_.geometries[k].object) != listed.end())
+  for (size_t k = 0; k < system_.geometries.size(); ++k) {
+    if (std::find(listed.begin(), listed.end(), system_.geometries[k].object) != listed.end())
       out.geometries.push_back(static_cast<int>(k));
   }
   return out;

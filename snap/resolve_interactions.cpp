@@ -19,13 +19,13 @@ void SystemBuilder::add_interaction(fe::ObjectId id) {
   }
   if (steering_interaction_ && ev_.graph().at(id).type->is_subtype_of(steering_interaction_))
     interaction.kind = Interaction1D::Kind::Steering;
-  view_.interactions.push_back(std::move(interaction));
+  system_.interactions.push_back(std::move(interaction));
 }
 
 // The index of the mate that is `object`, or -1 (the map is built once, after the walk found every mate).
 int SystemBuilder::mate_index(fe::ObjectId object) {
   if (mate_of_.empty()) {
-    for (size_t m = 0; m < view_.mates.size(); ++m) mate_of_[view_.mates[m].object] = static_cast<int>(m);
+    for (size_t m = 0; m < system_.mates.size(); ++m) mate_of_[system_.mates[m].object] = static_cast<int>(m);
   }
   auto it = mate_of_.find(object);
   return it == mate_of_.end() ? -1 : it->second;
@@ -34,7 +34,7 @@ int SystemBuilder::mate_index(fe::ObjectId object) {
 // Drivetrain references: 1-D connectors belong to the shaft that owns them; actuators name a 3-D mate.
 void SystemBuilder::resolve_drivetrain() {
   std::unordered_map<fe::ObjectId, int> shaft_of;
-  for (size_t k = 0; k < view_.shafts.size(); ++k) shaft_of[view_.shafts[k].object] = static_cast<int>(k);
+  for (size_t k = 0; k < system_.shafts.size(); ++k) shaft_of[system_.shafts[k].object] = static_cast<int>(k);
   auto shaft = [&](fe::ObjectId ref) {
     if (ref == fe::kNoObject) return -1;
     if (auto it = shaft_of.find(ref); it != shaft_of.end()) return it->second;  // the shaft itself
@@ -49,7 +49,7 @@ void SystemBuilder::resolve_drivetrain() {
     }
     return out;
   };
-  for (DriveCoupling& c : view_.couplings) {
+  for (DriveCoupling& c : system_.couplings) {
     switch (c.kind) {
       case DriveCoupling::Kind::Gear:
       case DriveCoupling::Kind::Clutch:
@@ -70,16 +70,16 @@ void SystemBuilder::resolve_drivetrain() {
       }
     }
   }
-  for (JointCoupling& c : view_.joint_couplings) {
+  for (JointCoupling& c : system_.joint_couplings) {
     c.follower = mate_index(object(c.object, "follower"));
     c.leader = mate_index(object(c.object, "leader"));
   }
-  for (JointProperties& p : view_.joint_properties) p.mate = mate_index(object(p.object, "mate"));
-  for (Interaction1D& i : view_.interactions) {
+  for (JointProperties& p : system_.joint_properties) p.mate = mate_index(object(p.object, "mate"));
+  for (Interaction1D& i : system_.interactions) {
     if (i.kind == Interaction1D::Kind::Steering)
       read_steering(in_, i.object, i, [&](fe::ObjectId mate) { return mate_index(mate); });
   }
-  for (Interaction1D& i : view_.interactions) {
+  for (Interaction1D& i : system_.interactions) {
     const fe::Object& obj = ev_.graph().at(i.object);
     const bool drivetrain_motor = is(obj, motor1d_) || is(obj, torque_motor1d_);
     // A Physics3D rotational motor given a shaft's 1-D connector drives that shaft too.
@@ -121,8 +121,8 @@ void SystemBuilder::attach(Interaction1D& interaction) {
 // The first mate of each pair of connectors: an interaction finds its mate by one lookup, not by a walk
 // over all mates (quadratic for a 10,000-joint URDF, one range per joint).
 void SystemBuilder::index_mates_by_connectors() {
-  for (size_t m = 0; m < view_.mates.size(); ++m) {
-    const fe::Value* mate_list = ev_.value(view_.mates[m].object, "connectors");
+  for (size_t m = 0; m < system_.mates.size(); ++m) {
+    const fe::Value* mate_list = ev_.value(system_.mates[m].object, "connectors");
     if (!mate_list || mate_list->kind != fe::Value::Kind::Array || mate_list->array().size() != 2) continue;
     mate_by_connectors_.emplace(connector_pair(mate_list->array()[0].object, mate_list->array()[1].object),
                                 static_cast<int>(m));
@@ -163,7 +163,7 @@ void SystemBuilder::add_mate(fe::ObjectId id) {
   read_mate_parameters(in_, id, mate);
   if (suspension_mate_ && type->is_subtype_of(suspension_mate_))
     read_suspension(in_, steering_trait_, id, mate);
-  view_.mates.push_back(std::move(mate));
+  system_.mates.push_back(std::move(mate));
 }
 
 // Connectors are references to objects anywhere in the tree (or to the World singleton).
@@ -187,7 +187,7 @@ void SystemBuilder::resolve_connectors(Mate& mate) {
     const fe::Object& obj = ev_.graph().at(item.object);
     if (obj.is_const_singleton && obj.type->is_subtype_of(connector_)) {
       add_connector(item.object, kWorld, false);
-      view_.connectors.back().path = obj.type->qualified;
+      system_.connectors.back().path = obj.type->qualified;
       mate.connectors[side] = connector_of_[item.object];
       continue;
     }
@@ -199,17 +199,17 @@ void SystemBuilder::resolve_connectors(Mate& mate) {
 
 void SystemBuilder::resolve_elastic_wheels() {
   if (!elastic_wheel_) return;
-  for (const FrameNode& n : view_.nodes) {
+  for (const FrameNode& n : system_.nodes) {
     if (n.kind != FrameNode::Kind::System || !ev_.graph().at(n.object).type->is_subtype_of(elastic_wheel_))
       continue;
     const int m = mate_index(object(n.object, "tire_mate"));
-    if (m >= 0) read_elastic_wheel(in_, n.object, view_.mates[m]);
+    if (m >= 0) read_elastic_wheel(in_, n.object, system_.mates[m]);
   }
 }
 
 void SystemBuilder::resolve_tracks() {
   if (!track_system_) return;
-  for (const FrameNode& n : view_.nodes) {
+  for (const FrameNode& n : system_.nodes) {
     if (n.kind != FrameNode::Kind::System || !ev_.graph().at(n.object).type->is_subtype_of(track_system_))
       continue;
     TrackSystem t;
@@ -254,7 +254,7 @@ void SystemBuilder::resolve_tracks() {
     }
     if (auto it = node_of_.find(object(n.object, "chassis_body")); it != node_of_.end())
       t.chassis = it->second;
-    view_.tracks.push_back(std::move(t));
+    system_.tracks.push_back(std::move(t));
   }
 }
 

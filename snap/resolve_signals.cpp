@@ -21,8 +21,8 @@ bool declared_by_user(const fe::ObjectGraph& graph, fe::ObjectId id) {
 
 void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) {
   const fe::Object& obj = ev_.graph().at(id);
-  const size_t index = view_.signals.size();
-  Signal& signal = view_.signals.emplace_back();  // filled in place
+  const size_t index = system_.signals.size();
+  Signal& signal = system_.signals.emplace_back();  // filled in place
   signal.object = id;
   signal.input = model.input;
   signal.path = path_of(id);
@@ -88,9 +88,9 @@ void SystemBuilder::read_relative_to(fe::ObjectId id, size_t index) {
   if (is(obj, connector_)) {
     signal_references_.emplace_back(index, reference);
   } else if (obj.type->qualified == "Math.AffineTransform") {
-    view_.signals[index].relative_transform = affine(reference);
+    system_.signals[index].relative_transform = affine(reference);
   } else {
-    view_.signals[index].relative_to_path = path_of(reference);
+    system_.signals[index].relative_to_path = path_of(reference);
   }
 }
 
@@ -100,30 +100,30 @@ void SystemBuilder::resolve_signal_references() {
   for (const auto& [signal, reference] : signal_references_) {
     const fe::Object& obj = ev_.graph().at(reference);
     if (auto it = connector_of_.find(reference); it != connector_of_.end()) {
-      view_.signals[signal].relative_to = it->second;
+      system_.signals[signal].relative_to = it->second;
     } else if (obj.is_const_singleton && obj.type->qualified == "Physics3D.Interactions.World") {
       continue;
     } else if (obj.is_const_singleton) {
       add_connector(reference, kWorld, false);
-      view_.connectors.back().path = obj.type->qualified;
-      view_.signals[signal].relative_to = connector_of_[reference];
+      system_.connectors.back().path = obj.type->qualified;
+      system_.signals[signal].relative_to = connector_of_[reference];
     } else {
-      view_.signals[signal].relative_to_path = path_of(reference);
+      system_.signals[signal].relative_to_path = path_of(reference);
     }
   }
 }
 
 // IMU fields' and lidars' connectors by index.
 void SystemBuilder::resolve_sensor_attachments() {
-  if (sensor_attachments_.empty() && view_.lidars.empty()) return;  // no index to build
+  if (sensor_attachments_.empty() && system_.lidars.empty()) return;  // no index to build
   std::unordered_map<fe::ObjectId, int> index;
-  for (size_t k = 0; k < view_.connectors.size(); ++k)
-    index[view_.connectors[k].object] = static_cast<int>(k);
+  for (size_t k = 0; k < system_.connectors.size(); ++k)
+    index[system_.connectors[k].object] = static_cast<int>(k);
   for (const auto& [signal, field, connector] : sensor_attachments_) {
     auto it = index.find(connector);
-    view_.signals[signal].sensor_fields[field].connector = it == index.end() ? -1 : it->second;
+    system_.signals[signal].sensor_fields[field].connector = it == index.end() ? -1 : it->second;
   }
-  for (Lidar& lidar : view_.lidars) {
+  for (Lidar& lidar : system_.lidars) {
     auto it = index.find(lidar.attachment);
     lidar.connector = it == index.end() ? -1 : it->second;
   }
@@ -135,11 +135,11 @@ void SystemBuilder::resolve_composites() {
                   [](const std::vector<fe::ObjectId>& parts) { return parts.empty(); }))
     return;  // no index to build
   std::unordered_map<fe::ObjectId, int> index;
-  for (size_t k = 0; k < view_.signals.size(); ++k) index[view_.signals[k].object] = static_cast<int>(k);
-  for (size_t k = 0; k < view_.signals.size(); ++k) {
+  for (size_t k = 0; k < system_.signals.size(); ++k) index[system_.signals[k].object] = static_cast<int>(k);
+  for (size_t k = 0; k < system_.signals.size(); ++k) {
     for (fe::ObjectId part : composite_parts_[k]) {
       auto it = index.find(part);
-      view_.signals[k].parts.push_back(it == index.end() ? -1 : it->second);
+      system_.signals[k].parts.push_back(it == index.end() ? -1 : it->second);
     }
   }
 }
@@ -159,22 +159,22 @@ void SystemBuilder::resolve_source(Signal& signal, fe::ObjectId source) {
 }
 
 void SystemBuilder::build_source_index() {
-  sources_.reserve(view_.connectors.size() + view_.shafts.size() + view_.couplings.size() +
-                   view_.nodes.size() + view_.mates.size() + view_.interactions.size() +
-                   view_.lidars.size());  // no rehashing
+  sources_.reserve(system_.connectors.size() + system_.shafts.size() + system_.couplings.size() +
+                   system_.nodes.size() + system_.mates.size() + system_.interactions.size() +
+                   system_.lidars.size());  // no rehashing
   // Inserted in reverse priority, so an object that were two things would keep the first kind.
   auto add = [&](SignalSource kind, const auto& items, auto accept) {
     for (size_t k = 0; k < items.size(); ++k)
       if (accept(items[k])) sources_[items[k].object] = {kind, static_cast<int>(k)};
   };
   auto all = [](const auto&) { return true; };
-  add(SignalSource::Connector, view_.connectors, all);
-  add(SignalSource::Shaft, view_.shafts, all);
-  add(SignalSource::Coupling, view_.couplings, all);
-  add(SignalSource::Body, view_.nodes, [](const FrameNode& n) { return n.kind == FrameNode::Kind::Body; });
-  add(SignalSource::Mate, view_.mates, all);
-  add(SignalSource::Interaction, view_.interactions, all);
-  add(SignalSource::Lidar, view_.lidars, all);
+  add(SignalSource::Connector, system_.connectors, all);
+  add(SignalSource::Shaft, system_.shafts, all);
+  add(SignalSource::Coupling, system_.couplings, all);
+  add(SignalSource::Body, system_.nodes, [](const FrameNode& n) { return n.kind == FrameNode::Kind::Body; });
+  add(SignalSource::Mate, system_.mates, all);
+  add(SignalSource::Interaction, system_.interactions, all);
+  add(SignalSource::Lidar, system_.lidars, all);
 }
 
 }  // namespace openplx::snap::detail

@@ -23,7 +23,7 @@ SystemBuilder::SystemBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink)
   // Roles are checked against models the evaluation loaded; a bundle it never loaded cannot be a base of
   // anything, and loading it here would only cost time (Terrain, Vehicles, DriveTrain for a simple arm).
   // Physics3D's core is always looked up (loaded if need be).
-  system_ = program.builtin_model("Physics3D.System");
+  system_model_ = program.builtin_model("Physics3D.System");
   body_ = program.builtin_model("Physics3D.Bodies.Body");
   connector_ = program.builtin_model("Physics3D.Interactions.MateConnector");
   adaptive_ = program.loaded_model("Physics3D.Interactions.AdaptiveMateConnector");
@@ -116,8 +116,8 @@ SystemBuilder::SystemBuilder(fe::Evaluator& evaluator, fe::DiagnosticSink& sink)
 }
 
 ResolvedSystem SystemBuilder::build(fe::ObjectId root) {
-  if (!system_ || !body_ || !connector_ || !mate_)
-    return std::move(view_);  // no Physics3D: nothing to assemble
+  if (!system_model_ || !body_ || !connector_ || !mate_)
+    return std::move(system_);  // no Physics3D: nothing to assemble
   // Depth-first in declaration order, parents before children.
   struct Item {
     fe::ObjectId object;
@@ -134,23 +134,23 @@ ResolvedSystem SystemBuilder::build(fe::ObjectId root) {
   resolve_redirects();
   resolve_elastic_wheels();
   resolve_tracks();
-  for (Mate& mate : view_.mates) resolve_connectors(mate);
-  for (Interaction1D& interaction : view_.interactions) attach(interaction);
+  for (Mate& mate : system_.mates) resolve_connectors(mate);
+  for (Interaction1D& interaction : system_.interactions) attach(interaction);
   resolve_drivetrain();
   resolve_packages();
-  for (Interaction1D& interaction : view_.interactions)
+  for (Interaction1D& interaction : system_.interactions)
     read_interaction_parameters(in_, interaction.object, interaction);
   resolve_materials();
-  for (size_t f = 0; f < view_.collision_filters.size(); ++f) {
-    view_.collision_filters[f].group1 = collision_group(filter_groups_[f].first);
-    view_.collision_filters[f].group2 = collision_group(filter_groups_[f].second);
+  for (size_t f = 0; f < system_.collision_filters.size(); ++f) {
+    system_.collision_filters[f].group1 = collision_group(filter_groups_[f].first);
+    system_.collision_filters[f].group2 = collision_group(filter_groups_[f].second);
   }
-  for (size_t k = 0; k < view_.signals.size(); ++k) resolve_source(view_.signals[k], signal_sources_[k]);
+  for (size_t k = 0; k < system_.signals.size(); ++k) resolve_source(system_.signals[k], signal_sources_[k]);
   resolve_composites();
   resolve_sensor_attachments();
   resolve_signal_references();
-  view_.gravity = read_gravity(in_, view_.root >= 0 ? view_.nodes[view_.root].object : fe::kNoObject);
-  return std::move(view_);
+  system_.gravity = read_gravity(in_, system_.root >= 0 ? system_.nodes[system_.root].object : fe::kNoObject);
+  return std::move(system_);
 }
 
 template <typename Stack>
@@ -159,7 +159,7 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
   int node = enclosing;
   const Role role = role_of(obj.type);
   if (role.unsupported && !is_root) {
-    view_.unsupported.push_back({id, path_of(id), role.unsupported->qualified, where_of(id)});
+    system_.unsupported.push_back({id, path_of(id), role.unsupported->qualified, where_of(id)});
     return;  // nothing inside maps either
   }
   switch (role.kind) {
@@ -169,7 +169,7 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
       if (inertia != fe::kNoObject)
         in_.require(std::isfinite(moment) && moment >= 0, inertia, "inertia", moment,
                     "a shaft's moment of inertia is a positive number of kg m^2");
-      view_.shafts.push_back({id, path_of(id), moment, where_of(id)});
+      system_.shafts.push_back({id, path_of(id), moment, where_of(id)});
       break;
     }
     case Role::Kind::Coupling: {
@@ -187,7 +187,7 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
       c.path = path_of(id);
       c.where = where_of(id);
       read_drive_parameters(in_, id, c);
-      view_.couplings.push_back(std::move(c));
+      system_.couplings.push_back(std::move(c));
       break;
     }
     case Role::Kind::Node:
@@ -209,7 +209,7 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
       add_signal(id, role.signal);
       break;
     case Role::Kind::VisualMaterial:
-      view_.visual_materials.push_back(read_visual_material(in_, id));
+      system_.visual_materials.push_back(read_visual_material(in_, id));
       break;
     case Role::Kind::ContactModel: {
       ContactModel model;
@@ -219,16 +219,16 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
       model.material2 = material_index(object(id, "material_2"));
       model.where = where_of(id);
       read_contact_parameters(in_, id, model);
-      view_.contact_models.push_back(std::move(model));
+      system_.contact_models.push_back(std::move(model));
       break;
     }
     case Role::Kind::Mimic:
-      view_.joint_couplings.push_back(
+      system_.joint_couplings.push_back(
           {id, path_of(id), -1, -1, real(id, "multiplier", 1.0), real(id, "offset", 0.0), where_of(id)});
       break;
     case Role::Kind::JointProperties:
-      view_.joint_properties.push_back({id, path_of(id), -1, real(id, "damping"), real(id, "friction"),
-                                        real(id, "effort"), real(id, "velocity"), where_of(id)});
+      system_.joint_properties.push_back({id, path_of(id), -1, real(id, "damping"), real(id, "friction"),
+                                          real(id, "effort"), real(id, "velocity"), where_of(id)});
       break;
     case Role::Kind::PackagePath:
       if (const fe::Value* name = ev_.value(id, "name"); name && name->kind == fe::Value::Kind::String) {
@@ -238,11 +238,11 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
       }
       break;
     case Role::Kind::CollisionFilter:
-      view_.collision_filters.push_back({id, path_of(id), {}, {}, where_of(id)});
+      system_.collision_filters.push_back({id, path_of(id), {}, {}, where_of(id)});
       filter_groups_.emplace_back(object(id, "group1"), object(id, "group2"));
       break;
     case Role::Kind::Lidar:
-      view_.lidars.push_back(read_lidar(in_, id, where_of(id), sink_));
+      system_.lidars.push_back(read_lidar(in_, id, where_of(id), sink_));
       break;
     case Role::Kind::Terrain: {
       Terrain t;
@@ -255,7 +255,7 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
       t.element_size = real(id, "element_size");
       t.max_depth = real(id, "max_depth");
       t.where = where_of(id);
-      view_.terrains.push_back(std::move(t));
+      system_.terrains.push_back(std::move(t));
       return;  // its material and soil have no MuJoCo counterpart (warned by the emitter)
     }
     case Role::Kind::TrackLinks:
@@ -265,7 +265,7 @@ void SystemBuilder::visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_
   }
   // Children pushed last first, so the stack pops them in declaration order. The evaluator left most
   // instances unevaluated (Evaluator::evaluate_layouts): a part is made here when it can hold anything
-  // this view maps.
+  // this system maps.
   for (uint32_t k = static_cast<uint32_t>(ev_.graph().at(id).slots.size()); k-- > 0;) {
     if (ev_.graph().at(id).slots[k].state == fe::Slot::State::Pending && holds_parts(id, k)) ev_.value(id, k);
     const fe::Slot& slot = ev_.graph().at(id).slots[k];
@@ -342,7 +342,7 @@ SystemBuilder::Role SystemBuilder::role_of(const fe::ModelInfo* type) {
               : sub(gear_) || sub(differential_) || sub(drive_actuator_) || sub(clutch_) || sub(brake_) ||
                       sub(gearbox_) || sub(converter_) || sub(mean_value_engine_) || sub(empirical_engine_)
                   ? K::Coupling
-              : sub(system_) || sub(body_)                      ? K::Node
+              : sub(system_model_) || sub(body_)                ? K::Node
               : sub(connector_)                                 ? K::Connector
               : sub(mate_)                                      ? K::Mate
               : sub(contact_geometry_) || sub(visual_geometry_) ? K::Geometry

@@ -14,7 +14,9 @@ namespace openplx::snap {
 // Where an instance was declared: its attribute's line in the owner, or its model's declaration for roots.
 frontend::SourceRange source_of(const frontend::ObjectGraph& graph, frontend::ObjectId id);
 
-// Builds the system of the tree under `root`. Requires the graph to be fully evaluated.
+// Builds the resolved system of the tree under `root`. Its attribute reads go through `evaluator`, which
+// evaluates on demand what was not evaluated yet (the converter evaluates lazily), so this pass calls back
+// into evaluation.
 ResolvedSystem resolve_system(frontend::Evaluator& evaluator, frontend::ObjectId root,
                               frontend::DiagnosticSink& sink);
 

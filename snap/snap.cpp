@@ -27,19 +27,19 @@ double axis_angle(const Eigen::Quaterniond& q, const Eigen::Vector3d& axis) {
 
 class Snapper {
  public:
-  Snapper(ResolvedSystem& view, fe::DiagnosticSink& sink)
-      : view_(view),
+  Snapper(ResolvedSystem& system, fe::DiagnosticSink& sink)
+      : system_(system),
         sink_(sink),
-        fixed_(view.nodes.size()),
-        placed_by_(view.nodes.size(), -1),
-        forced_(view.nodes.size(), false) {
-    for (size_t i = 0; i < view.nodes.size(); ++i) fixed_[i] = view.nodes[i].defined;
+        fixed_(system.nodes.size()),
+        placed_by_(system.nodes.size(), -1),
+        forced_(system.nodes.size(), false) {
+    for (size_t i = 0; i < system.nodes.size(); ++i) fixed_[i] = system.nodes[i].defined;
   }
 
   SnapResult run() {
     std::vector<int> unused;
-    for (size_t m = 0; m < view_.mates.size(); ++m) {
-      const Mate& mate = view_.mates[m];
+    for (size_t m = 0; m < system_.mates.size(); ++m) {
+      const Mate& mate = system_.mates[m];
       if (mate.enable_snap && mate.connectors[0] >= 0 && mate.connectors[1] >= 0)
         unused.push_back(static_cast<int>(m));
     }
@@ -61,7 +61,7 @@ class Snapper {
       if (!force_one(unused)) break;
     }
     for (int m : unused) {
-      const Mate& mate = view_.mates[m];
+      const Mate& mate = system_.mates[m];
       sink_.report(fe::DiagCode::SnapUnplaced, mate.where,
                    "SNAP cannot place mate " + mate.path + " between " + connector_name(mate.connectors[0]) +
                        " and " + connector_name(mate.connectors[1]));
@@ -69,8 +69,8 @@ class Snapper {
     resolve_adaptive();
     resolve_redirected();
     SnapResult result;
-    for (size_t i = 0; i < view_.nodes.size(); ++i) result.node_world.push_back(world(static_cast<int>(i)));
-    for (size_t c = 0; c < view_.connectors.size(); ++c)
+    for (size_t i = 0; i < system_.nodes.size(); ++i) result.node_world.push_back(world(static_cast<int>(i)));
+    for (size_t c = 0; c < system_.connectors.size(); ++c)
       result.connector_world.push_back(connector_world(static_cast<int>(c)));
     result.placed_by = placed_by_;
     result.forced = forced_;
@@ -78,18 +78,18 @@ class Snapper {
   }
 
  private:
-  std::string connector_name(int c) const { return c < 0 ? "<missing>" : view_.connectors[c].path; }
-  int parent(int node) const { return node == kWorld ? kWorld : view_.nodes[node].parent; }
+  std::string connector_name(int c) const { return c < 0 ? "<missing>" : system_.connectors[c].path; }
+  int parent(int node) const { return node == kWorld ? kWorld : system_.nodes[node].parent; }
 
   Transform world(int node) const {
     Transform t;
     std::vector<int> chain;
     for (int n = node; n != kWorld; n = parent(n)) chain.push_back(n);
-    for (auto it = chain.rbegin(); it != chain.rend(); ++it) t = affine_compose(t, view_.nodes[*it].local);
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) t = affine_compose(t, system_.nodes[*it].local);
     return t;
   }
   Transform connector_world(int c) const {
-    return affine_compose(world(view_.connectors[c].owner), view_.connectors[c].local);
+    return affine_compose(world(system_.connectors[c].owner), system_.connectors[c].local);
   }
 
   int common_ancestor(int a, int b) const {
@@ -118,9 +118,9 @@ class Snapper {
   }
 
   bool try_mate(int m, size_t& free_dofs) {
-    const Mate& mate = view_.mates[m];
-    const Connector& c0 = view_.connectors[mate.connectors[0]];
-    const Connector& c1 = view_.connectors[mate.connectors[1]];
+    const Mate& mate = system_.mates[m];
+    const Connector& c0 = system_.connectors[mate.connectors[0]];
+    const Connector& c1 = system_.connectors[mate.connectors[1]];
     const int g = common_ancestor(c0.owner, c1.owner);
     int u0 = 0, u1 = 0;
     const int first0 = first_undefined(chain(c0.owner, g), &u0);
@@ -141,8 +141,8 @@ class Snapper {
 
   // Solves node C's local transform so that connector `side` of the mate meets its partner at rest.
   void place(int m, int side, int node) {
-    const Mate& mate = view_.mates[m];
-    const Connector& moving = view_.connectors[mate.connectors[side]];
+    const Mate& mate = system_.mates[m];
+    const Connector& moving = system_.connectors[mate.connectors[side]];
     const Transform partner = connector_world(mate.connectors[1 - side]);
     const Transform j = joint_offset(mate);
     // Rest: F1 = F0 ∘ J. The target of the moving connector's world frame:
@@ -153,19 +153,19 @@ class Snapper {
     std::vector<int> between;
     for (int n = moving.owner; n != node; n = parent(n)) between.push_back(n);
     for (auto it = between.rbegin(); it != between.rend(); ++it)
-      below = affine_compose(below, view_.nodes[*it].local);
+      below = affine_compose(below, system_.nodes[*it].local);
     const Transform n_frame = affine_compose(below, moving.local);
     const Transform p_frame = world(parent(node));
     // S = P⁻¹ ∘ A ∘ N⁻¹
-    view_.nodes[node].local =
+    system_.nodes[node].local =
         affine_compose(affine_compose(affine_inverse(p_frame), target), affine_inverse(n_frame));
-    view_.nodes[node].local.rotation.normalize();
+    system_.nodes[node].local.rotation.normalize();
     fixed_[node] = true;
     placed_by_[node] = m;
   }
 
   void check(int m) {
-    const Mate& mate = view_.mates[m];
+    const Mate& mate = system_.mates[m];
     const Residual r =
         mate_residual(mate, connector_world(mate.connectors[0]), connector_world(mate.connectors[1]));
     if (r.distance <= kDistanceTolerance && r.angle <= kAngleTolerance) return;
@@ -181,23 +181,23 @@ class Snapper {
   // never moves, so assembly must not move it either: a URDF's massless root), else the first undefined
   // transform of the first unused mate (side 0's chain, then side 1's).
   bool force_one(const std::vector<int>& unused) {
-    for (size_t i = 0; i < view_.nodes.size(); ++i) {
-      if (!fixed_[i] && view_.nodes[i].reference) {
+    for (size_t i = 0; i < system_.nodes.size(); ++i) {
+      if (!fixed_[i] && system_.nodes[i].reference) {
         fixed_[i] = forced_[i] = true;
         return true;
       }
     }
-    for (size_t i = 0; i < view_.nodes.size(); ++i) {
-      const FrameNode& n = view_.nodes[i];
+    for (size_t i = 0; i < system_.nodes.size(); ++i) {
+      const FrameNode& n = system_.nodes[i];
       if (!fixed_[i] && n.kind == FrameNode::Kind::Body && !n.body.dynamic) {
         fixed_[i] = forced_[i] = true;
         return true;
       }
     }
     for (int m : unused) {
-      const Mate& mate = view_.mates[m];
-      const Connector& c0 = view_.connectors[mate.connectors[0]];
-      const Connector& c1 = view_.connectors[mate.connectors[1]];
+      const Mate& mate = system_.mates[m];
+      const Connector& c0 = system_.connectors[mate.connectors[0]];
+      const Connector& c1 = system_.connectors[mate.connectors[1]];
       const int g = common_ancestor(c0.owner, c1.owner);
       int count = 0;
       int node = first_undefined(chain(c0.owner, g), &count);
@@ -211,10 +211,10 @@ class Snapper {
 
   // An adaptive connector moves itself onto its partner once everything else is placed.
   void resolve_adaptive() {
-    for (const Mate& mate : view_.mates) {
+    for (const Mate& mate : system_.mates) {
       if (mate.connectors[0] < 0 || mate.connectors[1] < 0) continue;
       for (int side = 0; side < 2; ++side) {
-        Connector& c = view_.connectors[mate.connectors[side]];
+        Connector& c = system_.connectors[mate.connectors[side]];
         if (!c.adaptive) continue;
         const Transform partner = connector_world(mate.connectors[1 - side]);
         const Transform j = joint_offset(mate);
@@ -228,7 +228,7 @@ class Snapper {
 
   // A redirected connector whose parent needed assembly moves onto it now, keeping its world frame.
   void resolve_redirected() {
-    for (Connector& c : view_.connectors) {
+    for (Connector& c : system_.connectors) {
       if (c.redirect_to < 0) continue;
       c.local = affine_compose(affine_compose(affine_inverse(world(c.redirect_to)), world(c.owner)), c.local);
       c.local.rotation.normalize();
@@ -236,7 +236,7 @@ class Snapper {
     }
   }
 
-  ResolvedSystem& view_;
+  ResolvedSystem& system_;
   fe::DiagnosticSink& sink_;
   std::vector<bool> fixed_;
   std::vector<int> placed_by_;

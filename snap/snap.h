@@ -1,4 +1,4 @@
-// SNAP, the automatic assembly of OpenPLX (spec/snap.md, and the 0.17.8 pseudocode in ../shared/seed):
+// SNAP, the automatic assembly of OpenPLX (docs/snap.md; the 0.17.8 pseudocode in ../shared/seed):
 // computes the local transforms the model left undefined so that every mate's connector frames meet.
 //
 // Loop, as the pseudocode: for each unused mate, with G the closest common ancestor of its connectors'

@@ -20,14 +20,14 @@ void line(std::ostream& out, const std::string& path, Transform t) {
 
 }  // namespace
 
-void dump_snap(std::ostream& out, const ResolvedSystem& view, const SnapResult& result,
+void dump_snap(std::ostream& out, const ResolvedSystem& system, const SnapResult& result,
                const std::string& root_name) {
-  for (const auto& [is_node, index] : view.order) {
+  for (const auto& [is_node, index] : system.order) {
     if (is_node) {
-      const std::string& path = view.nodes[index].path;
+      const std::string& path = system.nodes[index].path;
       line(out, path.empty() ? root_name : path, result.node_world[index]);
     } else {
-      line(out, view.connectors[index].path, result.connector_world[index]);
+      line(out, system.connectors[index].path, result.connector_world[index]);
     }
   }
 }

@@ -10,7 +10,7 @@
 
 namespace openplx::snap {
 
-void dump_snap(std::ostream& out, const ResolvedSystem& view, const SnapResult& result,
+void dump_snap(std::ostream& out, const ResolvedSystem& system, const SnapResult& result,
                const std::string& root_name);
 
 }  // namespace openplx::snap

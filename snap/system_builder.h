@@ -1,6 +1,6 @@
 // The builder behind resolve_system (resolve_system.h): one walk over the evaluated tree that reads every
-// attribute the view maps. One class, its member functions defined by job in the snap/resolve_*.cpp files
-// and snap/object_paths.cpp; private to the snap library.
+// attribute the resolved system maps. One class, its member functions defined by job in the
+// snap/resolve_*.cpp files and snap/object_paths.cpp; private to the snap library.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,7 +32,7 @@ class SystemBuilder {
   ResolvedSystem build(fe::ObjectId root);
 
  private:
-  // What a model is to the view, decided once per model (a large tree has few models and many objects).
+  // What a model is to the system, decided once per model (a large tree has few models and many objects).
   struct Role {
     enum class Kind {
       None,
@@ -62,7 +62,7 @@ class SystemBuilder {
     } signal;
   };
 
-  // The walk over the tree, and what each model is to the view. (resolve_system.cpp)
+  // The walk over the tree, and what each model is to the system. (resolve_system.cpp)
   template <typename Stack>
   void visit(fe::ObjectId id, int enclosing, Stack& stack, bool is_root);
   bool holds_parts(fe::ObjectId id, uint32_t k);
@@ -157,7 +157,7 @@ class SystemBuilder {
   fe::Evaluator& ev_;
   AttributeReader in_;
   fe::DiagnosticSink& sink_;
-  ResolvedSystem view_;
+  ResolvedSystem system_;
   // Attributes read on every instance of a model, found once per layout (AttributeReader has Math.Vec3's
   // and Math.Quat's): a Math.AffineTransform's, a Math.Matrix3x3's, the transform of a system or of a
   // body's kinematics, and a signal's (an Input's or Output's, composites' and sources' included).
@@ -187,7 +187,7 @@ class SystemBuilder {
   std::vector<std::pair<fe::ObjectId, fe::ObjectId>> filter_groups_;  // per collision filter
   std::unordered_map<fe::ObjectId, int> material_of_;
   std::unordered_map<fe::ObjectId, std::pair<SignalSource, int>> sources_;
-  fe::ModelInfo* system_ = nullptr;
+  fe::ModelInfo* system_model_ = nullptr;
   fe::ModelInfo* body_ = nullptr;
   fe::ModelInfo* connector_ = nullptr;
   fe::ModelInfo* adaptive_ = nullptr;

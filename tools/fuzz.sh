@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer target with clang (ASan+UBSan) and runs it.
+# Builds a libFuzzer target with clang (ASan+UBSan) and runs it.
 #   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer, urdf_fuzzer,
 #                                       manifest_fuzzer, runtime_input_fuzzer).
 # Crashes land in fuzz-out/TARGET/crashes; add fixed ones to tests/fuzz/regressions.
@@ -8,10 +8,15 @@ cd "$(dirname "$0")/.."
 seconds=${1:-600}
 target=${2:-lex_parse_fuzzer}
 tools/install-deps.sh --fuzz
-CXX=clang++ CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOPENPLX_FUZZ=ON \
-  -DOPENPLX_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz --target "$target" -j"$(nproc)"
-corpus_dir=$(sed -n 's/^OPENPLX_CORPUS_DIR:PATH=//p' build-fuzz/CMakeCache.txt)
+# The sanitizer build ./test.sh makes (build-asan/, the same options: keep them in step), which holds the
+# fuzz targets: after ./test.sh, only the target's link is left to do.
+if [[ -f build-asan/CMakeCache.txt ]] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-asan/CMakeCache.txt; then
+  rm -rf build-asan
+fi
+CXX=clang++ CC=clang cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DOPENPLX_SANITIZE=ON \
+  -DOPENPLX_FUZZ=ON -DOPENPLX_BUILD_TESTS=ON -DOPENPLX_BUILD_BENCH=OFF -DOPENPLX_WERROR=ON >/dev/null
+cmake --build build-asan --target "$target" -j"$(nproc)"
+corpus_dir=$(sed -n 's/^OPENPLX_CORPUS_DIR:PATH=//p' build-asan/CMakeCache.txt)
 out=fuzz-out/$target
 mkdir -p "$out/corpus" "$out/crashes"
 # Seeds: the real files, the reconstructed seed snippets and the saved regressions.
@@ -31,6 +36,6 @@ else
 fi
 # urdfdom leaks its half-built tree on the URDFs it rejects (tools/lsan.supp says more): not ours to report.
 LSAN_OPTIONS=suppressions="$PWD/tools/lsan.supp" \
-  "build-fuzz/tests/fuzz/$target" "$out/corpus" ${dict:+-dict="$dict"} \
+  "build-asan/tests/fuzz/$target" "$out/corpus" ${dict:+-dict="$dict"} \
   -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
   -artifact_prefix="$out/crashes/"

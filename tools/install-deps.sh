@@ -1,22 +1,26 @@
 #!/usr/bin/env bash
-# Installs the Debian packages the build needs, only those missing. Used by ./run.sh and ./test.sh.
-#   tools/install-deps.sh            build and test dependencies
-#   tools/install-deps.sh --fuzz     also clang and its sanitizer runtime (libFuzzer)
-#   tools/install-deps.sh --tests    also Node and the pinned mujoco-js the current-MuJoCo test runs
+# Installs the Debian packages the build needs, only those missing. Used by ./run.sh, ./test.sh, tools/fuzz.sh.
+#   tools/install-deps.sh            what ./run.sh builds and runs: the converter, openplx-sim, their modules
+#   tools/install-deps.sh --tests    also the test suite's and benchmarks' (GoogleTest, Google Benchmark,
+#                                    clang-format, GNU time), Node and the pinned mujoco-js, Xvfb
+#   tools/install-deps.sh --fuzz     also clang and its sanitizer runtime (libFuzzer), and GoogleTest: the
+#                                    fuzz targets are built in the sanitizer build, with the tests
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(cmake make g++ pkg-config clang-format
+# libmujoco-samples: mujoco-testspeed (./run.sh), mujoco-compile and mujoco-simulate (benchmarks, tests).
+packages=(cmake make g++ pkg-config
   libmujoco-dev libqhull-dev libmujoco-samples libeigen3-dev liburdfdom-dev libtinyxml2-dev libassimp-dev
-  libgtest-dev libbenchmark-dev nlohmann-json3-dev time)
+  nlohmann-json3-dev)
 tests=0
 for arg in "$@"; do
   case "$arg" in
-    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
-    --tests) tests=1 ;;  # Node and the pinned MuJoCo WebAssembly build the tests compare with
+    --fuzz) packages+=(clang libclang-rt-14-dev libgtest-dev) ;;
+    --tests) tests=1 ;;
   esac
 done
 if [[ $tests -eq 1 ]]; then
+  packages+=(libgtest-dev libbenchmark-dev clang-format time)
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
   # A virtual X server and screen grabs for the samples' screenshots in mujoco-simulate (viewer_screenshots).

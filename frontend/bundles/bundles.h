@@ -1,4 +1,4 @@
-// Bundle discovery (spec/openplx-language.md §15). A bundle is a folder holding `config.openplx`
+// Bundle discovery (../shared/spec/openplx-language.md §15). A bundle is a folder holding `config.openplx`
 // (`config is BundleConfig:` with name, version, dependencies); its sub-folders are namespaces.
 //
 // Search order: the project's own bundles/ (installed beside the executable, else the source tree), then

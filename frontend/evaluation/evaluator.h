@@ -1,5 +1,5 @@
 // The evaluator: instantiates a root model into an ObjectGraph and computes attribute values lazily,
-// memoised, independent of declaration order (spec/openplx-language.md §16).
+// memoised, independent of declaration order (../shared/spec/openplx-language.md §16).
 //
 // Which expression binds an attribute (§16.2): among the instance's ancestors, the one closest to the root
 // that assigns it wins; within one instance's type chain, the most derived model; a declaration's default

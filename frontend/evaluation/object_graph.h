@@ -1,4 +1,5 @@
-// The evaluated instance tree: the IR every later pass reads (SNAP, the MJCF emitter, the runtime).
+// The evaluated instance tree: the IR the resolved-system builder (snap/) reads; the emitter and the runtime
+// see only the resolved system built from it.
 //
 // Objects are model instances held by index. Each attribute is a Slot with its effective type, the entry
 // that bound it, whether that binding is an explicit assignment (SNAP needs "undefined local transform"),

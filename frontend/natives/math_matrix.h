@@ -1,6 +1,6 @@
-// Numeric core of Math.Matrix3x3 / Math.Matrix4x4 / Math.Line (bundles-api.md §1). Pure Eigen, no project
-// deps. Matrices are row-major in OpenPLX (e<row><col>); here they are Eigen::Matrix3d / Matrix4d indexed
-// m(row, col). Factories taking lists return std::nullopt when a list has the wrong length.
+// Numeric core of Math.Matrix3x3 / Math.Matrix4x4 / Math.Line (../shared/spec/bundles-api.md §1). Pure Eigen,
+// no project deps. Matrices are row-major in OpenPLX (e<row><col>); here they are Eigen::Matrix3d / Matrix4d
+// indexed m(row, col). Factories taking lists return std::nullopt when a list has the wrong length.
 #pragma once
 
 #include <optional>

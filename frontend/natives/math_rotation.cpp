@@ -23,7 +23,7 @@ Eigen::Vector3d world_axis(char c) {
   return Eigen::Vector3d::UnitZ();
 }
 
-// Published order: the static list, then the rotating list (bundles-api.md §1).
+// Published order: the static list, then the rotating list (../shared/spec/bundles-api.md §1).
 constexpr std::array<std::string_view, 24> kEulerConventions = {
     "xyzs", "xyxs", "xzys", "xzxs", "yzxs", "yzys", "yxzs", "yxys", "zxys", "zxzs", "zyxs", "zyzs",
     "zyxr", "xyxr", "yzxr", "xzxr", "xzyr", "yzyr", "zxyr", "yxyr", "yxzr", "zxzr", "xyzr", "zyzr"};

@@ -1,5 +1,5 @@
-// Numeric core of Math.Vec3 / Math.Quat / Math.AffineTransform (bundles-api.md §1, Appendix A).
-// Pure functions on Eigen types, no dependency on the rest of the project; the evaluator wraps them.
+// Numeric core of Math.Vec3 / Math.Quat / Math.AffineTransform (../shared/spec/bundles-api.md §1, Appendix
+// A). Pure functions on Eigen types, no dependency on the rest of the project; the evaluator wraps them.
 // Quaternions are Eigen::Quaterniond. Beware: Eigen's 4-argument constructor takes (w, x, y, z), while
 // OpenPLX fields are (x, y, z, w); use quat_from_xyzw / quat_to_xyzw at the boundary.
 #pragma once

@@ -1,7 +1,7 @@
-// Numeric core of the const model Math.Functions (bundles-api.md §1, Appendix A): all static, Real in, Real
-// out. Plain functions on double and std::span<const double>; no project deps. The names shadow <cmath> ones
-// (sin, sqrt, min, ...), so call them qualified (natives::sin) rather than through using-directives.
-// Empty lists: sum -> 0, every other list function -> NaN. NaN inputs propagate.
+// Numeric core of the const model Math.Functions (../shared/spec/bundles-api.md §1, Appendix A): all static,
+// Real in, Real out. Plain functions on double and std::span<const double>; no project deps. The names shadow
+// <cmath> ones (sin, sqrt, min, ...), so call them qualified (natives::sin) rather than through
+// using-directives. Empty lists: sum -> 0, every other list function -> NaN. NaN inputs propagate.
 #pragma once
 
 #include <span>

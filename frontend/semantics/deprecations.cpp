@@ -6,7 +6,7 @@
 namespace openplx::frontend {
 namespace {
 
-// spec/bundles-api.md §0.1 (migration 0.18.10 -> 0.19.0) and the 0.17.8 listings.
+// ../shared/spec/bundles-api.md §0.1 (migration 0.18.10 -> 0.19.0) and the 0.17.8 listings.
 struct Move {
   std::string_view old_namespace;
   std::string_view name;

@@ -4,7 +4,7 @@
 // (bundle_index.h) the first time a name inside it is looked up, and a file is parsed when one of its names
 // is. Whatever lists all names of a namespace (a "did you mean") first parses the rest with load_all().
 //
-// Name lookup follows spec/openplx-language.md §11: members first (done by the evaluator), then the
+// Name lookup follows ../shared/spec/openplx-language.md §11: members first (done by the evaluator), then the
 // namespace of the file (its folder, or the file itself outside bundles, plus its imports), then the
 // enclosing bundle's root, then bundle names.
 #pragma once

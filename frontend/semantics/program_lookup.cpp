@@ -4,10 +4,10 @@
 
 #include <algorithm>
 
+#include "contract/edit_distance.h"
 #include "frontend/bundles/embedded_bundles.h"
 #include "frontend/natives/host_declarations.h"
 #include "frontend/semantics/deprecations.h"
-#include "frontend/semantics/edit_distance.h"
 #include "frontend/semantics/unknown_name_notes.h"
 
 namespace openplx::frontend {

@@ -1,6 +1,6 @@
-// The syntax tree of one OpenPLX document (spec/openplx-language.md §3). Every node carries the source
-// range it was parsed from. Names are views into the SourceFile text, so the SourceManager must outlive the
-// Document. Expressions live in one arena (`Document::exprs`) and refer to each other by ExprId.
+// The syntax tree of one OpenPLX document (../shared/spec/openplx-language.md §3). Every node carries the
+// source range it was parsed from. Names are views into the SourceFile text, so the SourceManager must
+// outlive the Document. Expressions live in one arena (`Document::exprs`) and refer to each other by ExprId.
 #pragma once
 
 #include <cstdint>

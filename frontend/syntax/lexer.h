@@ -1,4 +1,4 @@
-// Lexer: OpenPLX text to tokens, with Python-style layout tokens (spec/openplx-language.md §2).
+// Lexer: OpenPLX text to tokens, with Python-style layout tokens (../shared/spec/openplx-language.md §2).
 //
 // Indentation is relative: a stack of open columns; a deeper line opens one block (INDENT), a shallower
 // line closes blocks (DEDENT) and must land on a column already open. Blank and comment-only lines, lines

@@ -1,4 +1,4 @@
-// Parser: tokens to a Document (spec/openplx-language.md §3).
+// Parser: tokens to a Document (../shared/spec/openplx-language.md §3).
 //
 // Recursive descent with one token of lookahead. Errors are reported to the sink and the parser resumes at
 // the next line of the same block, so one run reports every syntax error of a file. Nesting of blocks and

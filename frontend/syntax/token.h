@@ -1,5 +1,5 @@
-// Tokens of the OpenPLX lexical grammar (spec/openplx-language.md §2). A token is a kind and a byte range;
-// its text is a view into the SourceFile, so lexing allocates nothing per token.
+// Tokens of the OpenPLX lexical grammar (../shared/spec/openplx-language.md §2). A token is a kind and a
+// byte range; its text is a view into the SourceFile, so lexing allocates nothing per token.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // `package://P/rest` mesh names (ROS): which package, and the path inside it. Shared by the URDF import
-// (which looks for P beside the URDF) and the physics view (which honours a model's Urdf.PackagePath).
+// (which looks for P beside the URDF) and the resolved system (which honours a model's Urdf.PackagePath).
 #pragma once
 
 #include <optional>

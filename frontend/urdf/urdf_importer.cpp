@@ -1,12 +1,9 @@
 #include "frontend/urdf/urdf_importer.h"
 
-#include <dlfcn.h>
-
-#include <filesystem>
-#include <mutex>
+#include <string>
 #include <vector>
 
-#include "frontend/bundles/bundles.h"
+#include "frontend/platform/loadable_module.h"
 #include "frontend/urdf/urdf_module_abi.h"
 
 #ifdef OPENPLX_URDF_LINKED
@@ -17,27 +14,21 @@ namespace openplx::frontend {
 
 namespace {
 
-std::mutex candidates_mutex;
-std::vector<std::string>& extra_candidates() {
-  static std::vector<std::string> paths;
-  return paths;
-}
-
-// Beside an installed executable, then this build's, then the configured install prefix's, then registered.
-std::vector<std::string> module_candidates() {
-  namespace fs = std::filesystem;
+// This build's module, then the install prefix's.
+std::vector<std::string> configured_paths() {
   std::vector<std::string> paths;
-  if (const fs::path dir = executable_dir(); !dir.empty())
-    paths.push_back((dir / "../lib/openplx2mjcf/libopenplx_urdf.so").lexically_normal());
 #ifdef OPENPLX_URDF_MODULE_BUILT
   paths.emplace_back(OPENPLX_URDF_MODULE_BUILT);
 #endif
 #ifdef OPENPLX_URDF_MODULE_INSTALLED
   paths.emplace_back(OPENPLX_URDF_MODULE_INSTALLED);
 #endif
-  std::lock_guard lock(candidates_mutex);
-  paths.insert(paths.end(), extra_candidates().begin(), extra_candidates().end());
   return paths;
+}
+
+PluginSearch& module_search() {
+  static PluginSearch search("libopenplx_urdf.so", configured_paths());
+  return search;
 }
 
 struct LoadedModule {
@@ -48,25 +39,13 @@ struct LoadedModule {
 [[maybe_unused]] const LoadedModule& loaded_module() {  // not in fuzz builds (OPENPLX_URDF_LINKED)
   static const LoadedModule module = [] {
     LoadedModule m;
-    std::string tried;
-    for (const std::string& path : module_candidates()) {
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(path, ec)) {
-        tried += (tried.empty() ? "" : ", ") + path;
-        continue;
-      }
-      // Never closed: its code may still be on a stack when the process ends.
-      void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);  // lazy: binds only what a URDF uses
-      if (!handle) {
-        const char* why = dlerror();
-        m.error = "cannot load the URDF importer " + path + ": " + (why ? why : "unknown error");
-        return m;
-      }
-      m.import = reinterpret_cast<OpenplxUrdfImportFunction>(dlsym(handle, OPENPLX_URDF_IMPORT_SYMBOL));
-      if (!m.import) m.error = "the URDF importer " + path + " has no " OPENPLX_URDF_IMPORT_SYMBOL;
-      return m;
-    }
-    m.error = "cannot find the URDF importer libopenplx_urdf.so (tried " + tried + ")";
+    // Lazy binding: only what a URDF import calls gets bound.
+    const LoadableModule library = load_first_module("the URDF importer", module_search().file_name(),
+                                                     module_search().candidates(), Binding::Lazy);
+    if (!library.handle)
+      m.error = library.error;
+    else
+      library.find(OPENPLX_URDF_IMPORT_SYMBOL, m.import, m.error);
     return m;
   }();
   return module;
@@ -96,8 +75,7 @@ UrdfImport& as_import(void* context) {
 }  // namespace
 
 void add_urdf_module_candidate(const std::string& path) {
-  std::lock_guard lock(candidates_mutex);
-  extra_candidates().push_back(path);
+  module_search().add(path);
 }
 
 UrdfImport import_urdf(const std::string& path, const std::string& urdf_text, const std::string& model_name,

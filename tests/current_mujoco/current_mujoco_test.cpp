@@ -214,9 +214,9 @@ InBothVersions simulate_in_both_versions(const fs::path& model, const fs::path& 
   return run;
 }
 
-// spec/mujoco3-notes.md 4.2.4: a 2 kg box on a vertical slide hung from a 2000 N/m flexible Lock settles
-// m g / k = 9.81 mm low in 2.2.2 with the default law, and in 3.x only with --mujoco 3 (3.x gives this
-// "simple" body dA = 1/m, three times 2.2.2's). Within 1 % after 5 s in both.
+// docs/mapping.md "MuJoCo versions": a 2 kg box on a vertical slide hung from a 2000 N/m flexible Lock
+// settles m g / k = 9.81 mm low in 2.2.2 with the default law, and in 3.x only with --mujoco 3 (3.x gives
+// this "simple" body dA = 1/m, three times 2.2.2's). Within 1 % after 5 s in both.
 TEST(CurrentMuJoCo, SoftLockSettlesAtItsSpringLengthInBothVersions) {
   const openplx::testing::ScratchDir dir;
   const auto model = dir / "soft_lock.openplx";
@@ -232,9 +232,10 @@ TEST(CurrentMuJoCo, SoftLockSettlesAtItsSpringLengthInBothVersions) {
             << sag(run.mujoco3_with_22_law) << "\n";
 }
 
-// spec/mujoco3-notes.md 4.2.5: a 2 kg, 0.4 m arm on a hinge about y, held level by a 2000 N m/rad flexible
-// Lock at the hinge, sags m g r / k = 2 * 9.81 * 0.2 / 2000 = 1.962 mrad (MuJoCo's rotational row gets k_rot
-// from torquescale; 3.x squares it against its rotational dA, hence --mujoco 3's torquescale). Within 1 %.
+// docs/mapping.md "MuJoCo versions": a 2 kg, 0.4 m arm on a hinge about y, held level by a 2000 N m/rad
+// flexible Lock at the hinge, sags m g r / k = 2 * 9.81 * 0.2 / 2000 = 1.962 mrad (MuJoCo's rotational row
+// gets k_rot from torquescale; 3.x squares it against its rotational dA, hence --mujoco 3's torquescale).
+// Within 1 %.
 TEST(CurrentMuJoCo, SoftLockHoldsItsRotationalStiffnessInBothVersions) {
   const openplx::testing::ScratchDir dir;
   const auto model = dir / "soft_lock_rot.openplx";

@@ -1,5 +1,5 @@
-// Appendix B of spec/openplx-language.md, checked semantically: each case is loaded, instantiated and
-// evaluated, and its expected values (or its expected diagnostic) are asserted. One test per case
+// Appendix B of ../shared/spec/openplx-language.md, checked semantically: each case is loaded, instantiated
+// and evaluated, and its expected values (or its expected diagnostic) are asserted. One test per case
 // (CaseNN_...). Snippets given inline in the spec ("`Root:` / `a is Int: 1`") are rebuilt with 4-space
 // indentation; attribute-only snippets are placed in a `Root:` model. Where the expected result depends on a
 // proposal of the spec ((prop) / UNSPECIFIED), a comment names the decision the test pins.
@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "frontend/evaluation/value_format.h"
 #include "frontend/syntax/ast.h"
 #include "frontend/syntax/ast_dump.h"
 #include "tests/support/eval_fixture.h"

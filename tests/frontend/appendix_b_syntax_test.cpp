@@ -1,4 +1,5 @@
-// Appendix B of spec/openplx-language.md, at the level the parser can check: one test per case (CaseNN_...).
+// Appendix B of ../shared/spec/openplx-language.md, at the level the parser can check: one test per case
+// (CaseNN_...).
 // A case whose expected result depends on the syntax tree asserts that shape; a case whose result is decided
 // by semantic analysis or evaluation checks that its snippet parses cleanly, and says so in a comment.
 // Snippets given inline in the spec ("`Root:` / `a is Int: 1`") are rebuilt with 4-space indentation.

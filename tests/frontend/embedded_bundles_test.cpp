@@ -9,6 +9,7 @@
 #include "frontend/bundles/bundle_index.h"
 #include "frontend/bundles/bundles.h"
 #include "frontend/bundles/embedded_bundles.h"
+#include "frontend/pipeline.h"
 #include "frontend/semantics/program.h"
 #include "tests/support/eval_fixture.h"
 

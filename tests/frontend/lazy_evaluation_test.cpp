@@ -55,7 +55,7 @@ struct Resolved {
   openplx::frontend::SourceManager sources;
   openplx::frontend::DiagnosticSink sink;
   openplx::frontend::Evaluation evaluation;
-  openplx::snap::ResolvedSystem view;
+  openplx::snap::ResolvedSystem system;
 };
 
 void resolve_lazily(const fs::path& model, Resolved& out) {
@@ -63,7 +63,7 @@ void resolve_lazily(const fs::path& model, Resolved& out) {
   out.evaluation = openplx::frontend::evaluate_file({model.string(), std::nullopt, {}, std::nullopt},
                                                     out.sources, out.sink);
   ASSERT_NE(out.evaluation.root, openplx::frontend::kNoObject);
-  out.view = openplx::snap::resolve_system(*out.evaluation.evaluator, out.evaluation.root, out.sink);
+  out.system = openplx::snap::resolve_system(*out.evaluation.evaluator, out.evaluation.root, out.sink);
 }
 
 std::vector<fs::path> models() {
@@ -141,7 +141,7 @@ TEST(LazyEvaluation, UntouchedDefaultsOfOneTypeAreMadeOnce) {
   Resolved resolved;
   ASSERT_NO_FATAL_FAILURE(resolve_lazily(model, resolved));
   ASSERT_FALSE(resolved.sink.has_errors());
-  ASSERT_EQ(resolved.view.mates.size(), 4u);
+  ASSERT_EQ(resolved.system.mates.size(), 4u);
   size_t flexibilities = 0, dissipations = 0, marshallings = 0;
   const fe::ObjectGraph& graph = resolved.evaluation.evaluator->graph();
   for (fe::ObjectId id = 0; id < graph.objects.size(); ++id) {
@@ -199,10 +199,10 @@ TEST(LazyEvaluation, VectorsWrittenAlikeAreReadOnceAndKeepEachInstancesOwnValue)
   Resolved resolved;
   ASSERT_NO_FATAL_FAILURE(resolve_lazily(model, resolved));
   ASSERT_FALSE(resolved.sink.has_errors());
-  const openplx::snap::ResolvedSystem& view = resolved.view;
+  const openplx::snap::ResolvedSystem& system = resolved.system;
   std::map<std::string, Eigen::Vector3d> at;
-  for (const auto& c : view.connectors) at[c.path] = c.local.position;
-  for (const auto& g : view.geometries) at[g.path] = g.size;
+  for (const auto& c : system.connectors) at[c.path] = c.local.position;
+  for (const auto& g : system.geometries) at[g.path] = g.size;
   const std::map<std::string, Eigen::Vector3d> expected = {
       {"a.top", {0, 0, 0.5}},          {"b.top", {0, 0, 2}},
       {"c.top", {0, 0, 0.5}},          {"d.top", {0, 0, 0.5}},
@@ -215,8 +215,8 @@ TEST(LazyEvaluation, VectorsWrittenAlikeAreReadOnceAndKeepEachInstancesOwnValue)
     EXPECT_TRUE(at[path].isApprox(vector)) << path << ": " << at[path].transpose();
   }
   // a and c share a layout: c's size and top position were read from a's entries, not made again.
-  const fe::Object& c = resolved.evaluation.evaluator->graph().at(view.geometries[2].object);
-  ASSERT_EQ(view.geometries[2].path, "c.geometry");
+  const fe::Object& c = resolved.evaluation.evaluator->graph().at(system.geometries[2].object);
+  ASSERT_EQ(system.geometries[2].path, "c.geometry");
   EXPECT_EQ(c.find("size")->state, fe::Slot::State::Pending);
 }
 

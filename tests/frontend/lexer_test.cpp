@@ -1,5 +1,6 @@
-// Unit tests of the lexer's token stream (spec/openplx-language.md §2): layout tokens from relative
-// indentation, comments, identifiers and keywords, numbers, strings, implicit line joining, line ends.
+// Unit tests of the lexer's token stream (../shared/spec/openplx-language.md §2): layout tokens from
+// relative indentation, comments, identifiers and keywords, numbers, strings, implicit line joining, line
+// ends.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -4,6 +4,7 @@
 // block (its case 4), tabs, and a dedent that lands on no column at all.
 #include <gtest/gtest.h>
 
+#include "frontend/syntax/parser.h"
 #include "tests/support/parse_fixture.h"
 
 namespace {
@@ -74,7 +75,7 @@ TEST_F(MisalignedIndent, ClosesDeeperBlocksFirst) {
 }
 
 TEST_F(MisalignedIndent, TopLevelBlocksKeepTheSpecsError) {
-  // spec/openplx-language.md appendix case 4: `Root:` / 4 spaces / 2 spaces.
+  // ../shared/spec/openplx-language.md appendix case 4: `Root:` / 4 spaces / 2 spaces.
   parse("Root:\n    a is Int: 1\n  b is Int: 2\n");
   expect_diag(fe::DiagCode::InconsistentDedent, 3, 3);
   EXPECT_EQ(count(fe::DiagCode::MisalignedIndent), 0u);

@@ -1,5 +1,5 @@
-// Unit tests of the parser's AST (spec/openplx-language.md §3): every declaration and member form, the
-// expression grammar with its binding strength, source ranges, and the Document helpers.
+// Unit tests of the parser's AST (../shared/spec/openplx-language.md §3): every declaration and member form,
+// the expression grammar with its binding strength, source ranges, and the Document helpers.
 #include <gtest/gtest.h>
 
 #include <cmath>

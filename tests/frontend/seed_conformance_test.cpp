@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "frontend/bundles/bundles.h"
 #include "frontend/semantics/deprecations.h"
 #include "frontend/syntax/parser.h"
 #include "tests/support/eval_fixture.h"

@@ -2,6 +2,8 @@
 
 #include "frontend/diagnostics/source.h"
 
+namespace {
+
 namespace fe = openplx::frontend;
 
 TEST(SourceFile, LineAndColumnAreOneBased) {
@@ -27,3 +29,5 @@ TEST(SourceFile, ByteOrderMarkIsNotPartOfTheFirstLine) {
   EXPECT_EQ(file.line_col(3).col, 1u);
   EXPECT_EQ(file.line_text(1), "Root");
 }
+
+}  // namespace

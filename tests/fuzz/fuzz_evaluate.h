@@ -26,15 +26,15 @@ inline void evaluate_one(const uint8_t* data, size_t size) {
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   if (evaluation.root == fe::kNoObject) return;
   std::ostringstream out;
-  // The passes after evaluation: the physics view (which evaluates what the evaluator left for when it is
+  // The passes after evaluation: the resolved system (which evaluates what the evaluator left for when it is
   // read), SNAP and the MJCF emitter; then every value, read or not.
-  openplx::snap::ResolvedSystem view =
+  openplx::snap::ResolvedSystem system =
       openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-  openplx::snap::run_snap(view, sink);
+  openplx::snap::run_snap(system, sink);
   fe::dump_values(out, *evaluation.evaluator, evaluation.root);
   openplx::mjcf::EmitOptions options;
   options.model_name = evaluation.evaluator->root_name();
-  out << openplx::mjcf::emit_mjcf(view, options, sink).document.to_string();
+  out << openplx::mjcf::emit_mjcf(system, options, sink).document.to_string();
   fe::print_diagnostics(out, sources, sink.diagnostics());
 }
 

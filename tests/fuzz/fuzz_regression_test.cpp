@@ -15,6 +15,8 @@
 #include "tests/fuzz/fuzz_urdf.h"
 #include "tests/support/scratch_dir.h"
 
+namespace {
+
 namespace fs = std::filesystem;
 
 TEST(FuzzRegression, SavedInputsRunClean) {
@@ -52,3 +54,5 @@ TEST(FuzzRegression, RuntimeSamplesCompile) {
     if (compiled.model) mj_deleteModel(compiled.model);
   }
 }
+
+}  // namespace

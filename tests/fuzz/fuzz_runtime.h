@@ -23,9 +23,10 @@
 #include <vector>
 
 #include "frontend/pipeline.h"
+#include "mjcf_emitter/document_fingerprint.h"
 #include "mjcf_emitter/emitter.h"
-#include "mjcf_emitter/model_fingerprint.h"
 #include "openplx/runtime/signal_bridge.h"
+#include "openplx/runtime/simulation.h"
 #include "runtime/mujoco_messages.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
@@ -53,12 +54,12 @@ inline CompiledSample compile_sample(const std::string& file) {
   request.path = std::string(OPENPLX_FUZZ_SAMPLES_DIR) + "/" + file;
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   if (evaluation.root == fe::kNoObject || sink.has_errors()) return out;
-  openplx::snap::ResolvedSystem view =
+  openplx::snap::ResolvedSystem system =
       openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-  openplx::snap::run_snap(view, sink);
+  openplx::snap::run_snap(system, sink);
   openplx::mjcf::EmitOptions options;
   options.model_name = evaluation.evaluator->root_name();
-  const openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(view, options, sink);
+  const openplx::mjcf::Emitted emitted = openplx::mjcf::emit_mjcf(system, options, sink);
   openplx::mjcf::ManifestModel facts;
   facts.fingerprint = openplx::mjcf::model_fingerprint(emitted.document, "").text();
   facts.timestep = 0.002;

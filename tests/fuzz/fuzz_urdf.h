@@ -33,12 +33,12 @@ inline void urdf_one(const uint8_t* data, size_t size,
   fe::Evaluation evaluation = fe::evaluate_file({path, std::nullopt, {}, std::nullopt}, sources, sink);
   std::ostringstream out;
   if (evaluation.root != fe::kNoObject) {
-    openplx::snap::ResolvedSystem view =
+    openplx::snap::ResolvedSystem system =
         openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-    openplx::snap::run_snap(view, sink);
+    openplx::snap::run_snap(system, sink);
     openplx::mjcf::EmitOptions options;
     options.model_name = evaluation.evaluator->root_name();
-    out << openplx::mjcf::emit_mjcf(view, options, sink).document.to_string();
+    out << openplx::mjcf::emit_mjcf(system, options, sink).document.to_string();
   }
   fe::print_diagnostics(out, sources, sink.diagnostics());
   std::error_code ignored;

@@ -17,7 +17,7 @@
 #include <set>
 #include <sstream>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 #include "tests/support/json_schema_subset.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"

@@ -42,7 +42,7 @@ TEST_F(Mjcf, EveryCorpusModelLoadsInMuJoCoWhereSnapPutIt) {
         << all_diags();
     const std::string path = emit(name);
     ASSERT_FALSE(sink_.has_errors()) << all_diags();
-    const mj::CheckResult check = mj::check_mjcf(path, view_, snap_, "", evaluator_->root_name());
+    const mj::CheckResult check = mj::check_mjcf(path, system_, snap_, "", evaluator_->root_name());
     ASSERT_TRUE(check.loaded) << check.load_error << "\n" << xml_;
     EXPECT_TRUE(check.problems.empty()) << check.problems.front();
     EXPECT_LE(check.max_position_error, 1e-9);
@@ -416,7 +416,7 @@ TEST_F(Mjcf, LoopClosureOnASystemConnectorStartsSatisfied) {
       << all_diags();
   const std::string path = emit("bracket");
   ASSERT_FALSE(sink_.has_errors()) << all_diags();
-  const mj::CheckResult check = mj::check_mjcf(path, view_, snap_, "", evaluator_->root_name());
+  const mj::CheckResult check = mj::check_mjcf(path, system_, snap_, "", evaluator_->root_name());
   ASSERT_TRUE(check.loaded) << check.load_error;
   EXPECT_TRUE(check.problems.empty()) << check.problems.front();
   EXPECT_LE(check.max_equality_residual, 1e-9);

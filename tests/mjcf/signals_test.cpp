@@ -11,8 +11,8 @@
 #include <regex>
 #include <set>
 
+#include "contract/signal_binding.h"
 #include "frontend/syntax/quoted.h"
-#include "mjcf_emitter/signal_binding.h"
 #include "runtime/signal_conversions.h"
 #include "tests/support/mjcf_fixture.h"
 
@@ -42,7 +42,7 @@ TEST_F(Signals, EveryCorpusSignalHasOneBindingWhoseElementsExistInMuJoCo) {
     sink_.clear();
     ASSERT_TRUE(load_file(entry.path().string(), name == "simple_lidar" ? "ValidLidar" : nullptr, bundles));
     const std::string path = emit(name);
-    ASSERT_EQ(emitted_.signals.size(), view_.signals.size());
+    ASSERT_EQ(emitted_.signals.size(), system_.signals.size());
     mjModel* m = load_mujoco(path);
     ASSERT_NE(m, nullptr);
     for (const mj::SignalBinding& b : emitted_.signals) {

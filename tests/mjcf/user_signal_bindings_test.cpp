@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 #include "tests/support/front_axle.h"
 #include "tests/support/mjcf_fixture.h"
 #include "tests/support/scratch_dir.h"

@@ -10,12 +10,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "contract/manifest_reader.h"
 #include "frontend/diagnostics/diagnostics.h"
 #include "frontend/pipeline.h"
+#include "mjcf_emitter/document_fingerprint.h"
 #include "mjcf_emitter/emitter.h"
-#include "mjcf_emitter/model_fingerprint.h"
 #include "openplx/runtime/signal_bridge.h"
-#include "runtime/manifest_reader.h"
+#include "openplx/runtime/simulation.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
 #include "tests/support/light_rod.h"
@@ -55,13 +56,13 @@ mj::Emitted emitted(const std::string& model, const std::string& prefix) {
   request.path = model;
   fe::Evaluation evaluation = fe::evaluate_file(request, sources, sink);
   EXPECT_FALSE(sink.has_errors());
-  openplx::snap::ResolvedSystem view =
+  openplx::snap::ResolvedSystem system =
       openplx::snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
-  openplx::snap::run_snap(view, sink);
+  openplx::snap::run_snap(system, sink);
   mj::EmitOptions options;
   options.model_name = evaluation.evaluator->root_name();
   options.prefix = prefix;
-  return mj::emit_mjcf(view, options, sink);
+  return mj::emit_mjcf(system, options, sink);
 }
 
 json read_json(const fs::path& path) {
@@ -433,7 +434,7 @@ TEST(BridgeMismatch, EveryGoldenManifestReads) {
   size_t read = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(OPENPLX_TEST_DATA_DIR) / "golden" / "mjcf")) {
     if (entry.path().string().ends_with(".signals.json")) {
-      EXPECT_NO_THROW(rt::read_manifest(entry.path().string())) << entry.path();
+      EXPECT_NO_THROW(mj::read_manifest(entry.path().string())) << entry.path();
       ++read;
     }
   }

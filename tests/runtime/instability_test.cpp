@@ -12,7 +12,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 #include "openplx/runtime/simulation.h"
 #include "tests/support/light_rod.h"
 #include "tests/support/scratch_dir.h"

@@ -2,6 +2,7 @@
 // scene with <include>, loaded by plain mj_loadXML, each driven through its own bridge, move exactly as the
 // same model does in a Simulation of its own; a wrong prefix or a broken manifest is a LoadError.
 #include "openplx/runtime/signal_bridge.h"
+#include "openplx/runtime/simulation.h"
 
 #include <gtest/gtest.h>
 

@@ -17,7 +17,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "mjcf_emitter/steering_linkage.h"
+#include "contract/steering_linkage.h"
 #include "openplx/runtime/simulation.h"
 #include "tests/support/scratch_dir.h"
 

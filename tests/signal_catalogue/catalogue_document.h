@@ -28,8 +28,8 @@ struct Row {
 };
 
 inline constexpr const char* kRegenerate =
-    "cmake --build build-split --target signal_catalogue_test && "
-    "OPENPLX_UPDATE_CATALOGUE=1 build-split/tests/signal_catalogue_test";
+    "cmake --build build --target signal_catalogue_tests && "
+    "OPENPLX_UPDATE_CATALOGUE=1 build/tests/signal_catalogue_tests";
 
 namespace detail {
 

@@ -1,5 +1,5 @@
-// SNAP on the seed's three-level example, the worked examples of spec/snap.md, chains, trees, a closed
-// four-bar linkage and nested systems; and, for every corpus model, that every mate's connector frames
+// SNAP on the seed's three-level example, the worked examples of ../shared/spec/snap.md, chains, trees, a
+// closed four-bar linkage and nested systems; and, for every corpus model, that every mate's connector frames
 // meet after SNAP up to the mate's free degrees of freedom.
 #include "snap/snap.h"
 
@@ -30,20 +30,20 @@ class Snap : public openplx::testing::EvalTest {
   }
   bool assemble_loaded() {
     const size_t errors = sink_.error_count();
-    view_ = sn::resolve_system(*evaluator_, root_, sink_);
-    result_ = sn::run_snap(view_, sink_);
+    system_ = sn::resolve_system(*evaluator_, root_, sink_);
+    result_ = sn::run_snap(system_, sink_);
     return sink_.error_count() == errors;
   }
   int node(const std::string& path) const {
-    for (size_t i = 0; i < view_.nodes.size(); ++i) {
-      if (view_.nodes[i].path == path) return static_cast<int>(i);
+    for (size_t i = 0; i < system_.nodes.size(); ++i) {
+      if (system_.nodes[i].path == path) return static_cast<int>(i);
     }
     ADD_FAILURE() << "no node " << path;
     return 0;
   }
   int connector(const std::string& path) const {
-    for (size_t i = 0; i < view_.connectors.size(); ++i) {
-      if (view_.connectors[i].path == path) return static_cast<int>(i);
+    for (size_t i = 0; i < system_.connectors.size(); ++i) {
+      if (system_.connectors[i].path == path) return static_cast<int>(i);
     }
     ADD_FAILURE() << "no connector " << path;
     return 0;
@@ -55,8 +55,8 @@ class Snap : public openplx::testing::EvalTest {
   // Every mate meets: a mate that placed a node exactly at its initial values, the others up to their free
   // degrees of freedom.
   void expect_all_mates_meet() {
-    for (size_t m = 0; m < view_.mates.size(); ++m) {
-      const sn::Mate& mate = view_.mates[m];
+    for (size_t m = 0; m < system_.mates.size(); ++m) {
+      const sn::Mate& mate = system_.mates[m];
       if (!mate.enable_snap || mate.connectors[0] < 0 || mate.connectors[1] < 0) continue;
       const sn::Transform& f0 = result_.connector_world[mate.connectors[0]];
       const sn::Transform& f1 = result_.connector_world[mate.connectors[1]];
@@ -80,7 +80,7 @@ class Snap : public openplx::testing::EvalTest {
     EXPECT_LE(a.angularDistance(b), tol) << a.coeffs().transpose() << " vs " << b.coeffs().transpose();
   }
 
-  sn::ResolvedSystem view_;
+  sn::ResolvedSystem system_;
   sn::SnapResult result_;
 };
 
@@ -101,8 +101,8 @@ TEST_F(Snap, SeedThreeLevelExampleMovesThePseudocodesTransform) {
     const sn::Transform& wc = connector_world("world_connector");
     expect_near(rod.position, wc.position);
     expect_rotation(rod.rotation, wc.rotation);
-    for (const sn::FrameNode& n : view_.nodes) {
-      const bool placed = result_.placed_by[&n - view_.nodes.data()] >= 0;
+    for (const sn::FrameNode& n : system_.nodes) {
+      const bool placed = result_.placed_by[&n - system_.nodes.data()] >= 0;
       EXPECT_EQ(placed, n.path == moved) << n.path;
     }
     expect_all_mates_meet();
@@ -207,8 +207,8 @@ std::string example_c(const std::string& extra) {
 TEST_F(Snap, SpecExampleCMovesTheTopSystem) {
   ASSERT_TRUE(assemble(example_c(""))) << all_diags();
   const Eigen::Quaterniond rz(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
-  expect_near(view_.nodes[node("top")].local.position, {0, 0, -0.5});
-  expect_rotation(view_.nodes[node("top")].local.rotation, rz);
+  expect_near(system_.nodes[node("top")].local.position, {0, 0, -0.5});
+  expect_rotation(system_.nodes[node("top")].local.rotation, rz);
   EXPECT_TRUE(result_.forced[node("top.rod_parent.rod")]);
   EXPECT_TRUE(result_.forced[node("top.rod_parent")]);
   expect_all_mates_meet();
@@ -217,7 +217,7 @@ TEST_F(Snap, SpecExampleCMovesTheTopSystem) {
 TEST_F(Snap, SpecExampleCVariantWithADefinedMiddleSystem) {
   ASSERT_TRUE(assemble(example_c("    rod_parent.local_transform.position: {1, 0, 0}\n"))) << all_diags();
   const Eigen::Quaterniond rz(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
-  expect_near(view_.nodes[node("top")].local.position, rz * Eigen::Vector3d(-1, 0, -0.5));
+  expect_near(system_.nodes[node("top")].local.position, rz * Eigen::Vector3d(-1, 0, -0.5));
   expect_near(world("top.rod_parent.rod").position, rz * Eigen::Vector3d(0, 0, -0.5));
   expect_all_mates_meet();
 }
@@ -408,7 +408,7 @@ TEST_F(SnapCorpus, EveryMateOfEveryCorpusModelMeets) {
     ASSERT_TRUE(assemble_file(entry.path().string(), model, bundles)) << all_diags();
     expect_all_mates_meet();
     ++models;
-    mates += view_.mates.size();
+    mates += system_.mates.size();
   }
   EXPECT_EQ(models, 16u);
   EXPECT_GE(mates, 12u);

@@ -21,6 +21,14 @@ grep -q "Converting .*cart_pole.openplx to left_cart_pole.xml" "$t/first.log"
 "$t/build/arm_controller" "$source/samples/two_joint_arm.openplx"
 "$t/build/machine_driver" "$source/samples/drivetrain_machine.openplx"
 (cd "$t/build" && ./two_carts two_carts_scene.xml left_cart_pole.signals.json right_cart_pole.signals.json)
+# two_carts links openplx2mjcf::bridge: no library of the converter (front end, SNAP, emitter, runtime loader).
+link=$(cat "$t/build/CMakeFiles/two_carts.dir/link.txt")
+echo "two_carts link line: $link"
+if echo "$link" | grep -Eq 'libopenplx_(frontend|snap|mjcf|runtime|cli)\.a'; then
+  echo "error: the bridge-only controller links a converter library" >&2
+  exit 1
+fi
+echo "$link" | grep -q 'libopenplx_bridge\.a'
 
 # A later mtime than anything built, whatever the file system's timestamp resolution.
 later() { touch -d "@$(($(date +%s) + $1))" "$2"; }

@@ -1,15 +1,17 @@
 #!/bin/sh
-# README.md's example of a user's scene is the compiled sample, word for word: the fenced block after a line
-# `<!-- compiled: PATH -->` must equal PATH, or, when PATH marks a part with "README example begins" and
-# "README example ends" lines, the lines between them. Each file of samples/controller's two_carts needs one.
-# Then the check itself is checked: a README with one line of the C++ changed must fail it.
+# The example of a user's scene in docs/runtime.md ("Example: a user's scene") is the compiled sample, word for
+# word: the fenced block after a line `<!-- compiled: PATH -->` must equal PATH, or, when PATH marks a part with
+# "README example begins" and "README example ends" lines, the lines between them. Each file of
+# samples/controller's two_carts needs one. Then the check itself is checked: a document with one line of the
+# C++ changed must fail it.
 #   readme_example_test.sh SOURCE_DIR
 src=$1
+doc=docs/runtime.md
 t=$(mktemp -d)
 trap 'rm -rf "$t"' EXIT
 files="samples/controller/CMakeLists.txt samples/controller/two_carts_scene.xml samples/controller/two_carts.cpp"
 
-# compare README: 0 when every file's block in README is its text, else 1 with a diff for each that is not.
+# compare DOC: 0 when every file's block in DOC is its text, else 1 with a diff for each that is not.
 compare() {
   status=0
   for path in $files; do
@@ -28,7 +30,7 @@ compare() {
       echo "$1: no code block after <!-- compiled: $path -->"
       status=1
     elif diff -u "$t/expected" "$t/readme" >"$t/diff"; then
-      echo "$path: the README's block is its $(wc -l <"$t/expected") lines"
+      echo "$path: the block in $doc is its $(wc -l <"$t/expected") lines"
     else
       echo "$1: the block after <!-- compiled: $path --> differs from $path:"
       cat "$t/diff"
@@ -38,10 +40,14 @@ compare() {
   return $status
 }
 
-compare "$src/README.md" || exit 1
-sed 's/constexpr double kFallen = 0.2; /constexpr double kFallen = 0.3; /' "$src/README.md" >"$t/drifted.md"
+compare "$src/$doc" || exit 1
+sed 's/constexpr double kFallen = 0.2; /constexpr double kFallen = 0.3; /' "$src/$doc" >"$t/drifted.md"
+if cmp -s "$src/$doc" "$t/drifted.md"; then
+  echo "$doc: the line the self-check changes (kFallen = 0.2) is not in it"
+  exit 1
+fi
 if compare "$t/drifted.md" >/dev/null; then
-  echo "a README with a changed line of two_carts.cpp passed the comparison"
+  echo "a $doc with a changed line of two_carts.cpp passed the comparison"
   exit 1
 fi
 echo "a changed line is caught"

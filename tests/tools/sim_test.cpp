@@ -115,8 +115,6 @@ TEST(Sim, ValueSyntax) {
   EXPECT_FALSE(parse_signal_value(""));
 }
 
-}  // namespace
-
 // A run MuJoCo had to reset is exit 1 with the message, never a printed value.
 TEST(Sim, DivergingModelExitsOneWithTheMessage) {
   const openplx::testing::ScratchDir scratch;
@@ -174,3 +172,5 @@ TEST(Sim, ClampedInputIsSaid) {
   EXPECT_NE(at, std::string::npos) << run.err;
   EXPECT_EQ(run.err.find("input `throttle` got", at + 1), std::string::npos) << run.err;  // once
 }
+
+}  // namespace

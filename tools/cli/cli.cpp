@@ -23,9 +23,9 @@
 #include "frontend/syntax/lexer.h"
 #include "frontend/syntax/parser.h"
 #include "mjcf_emitter/check.h"
+#include "mjcf_emitter/document_fingerprint.h"
 #include "mjcf_emitter/emitter.h"
 #include "mjcf_emitter/mesh_files.h"
-#include "mjcf_emitter/model_fingerprint.h"
 #include "mjcf_emitter/timestep_dependence.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
@@ -74,7 +74,7 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
 // collision geometry overlapping, and run for --check-time seconds from its initial state without MuJoCo
 // finding it unstable. Findings land at the joint's or body's declaration, else at the root model's.
 void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOptions& emit_options,
-           const snap::ResolvedSystem& view, const snap::SnapResult& assembled,
+           const snap::ResolvedSystem& system, const snap::SnapResult& assembled,
            const fe::Evaluation& evaluation, fe::DiagnosticSink& sink) {
   namespace fs = std::filesystem;
   // Beside the output (so relative mesh paths resolve), else in the temporary folder.
@@ -86,8 +86,8 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
       dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".xml");
   const fe::SourceFile& source = evaluation.program->sources().file(evaluation.document->doc.file);
   fe::SourceRange at_root{evaluation.document->doc.file, source.content_begin(), source.content_begin()};
-  if (view.root >= 0 && view.nodes[static_cast<size_t>(view.root)].where.file != fe::kNoFile)
-    at_root = view.nodes[static_cast<size_t>(view.root)].where;
+  if (system.root >= 0 && system.nodes[static_cast<size_t>(system.root)].where.file != fe::kNoFile)
+    at_root = system.nodes[static_cast<size_t>(system.root)].where;
   // A URDF given directly: the root is declared in a generated one-line document, so what concerns the whole
   // robot goes to the URDF's <robot>, where the imported model's declaration came from.
   if (evaluation.program->urdf_given_directly() && evaluation.root != fe::kNoObject) {
@@ -108,7 +108,7 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   mjcf::CheckOptions check_options;
   check_options.simulate_time = options.check_time;
   check_options.emitted_timestep = options.timestep;
-  mjcf::CheckResult result = mjcf::check_mjcf(file.string(), view, assembled, options.prefix,
+  mjcf::CheckResult result = mjcf::check_mjcf(file.string(), system, assembled, options.prefix,
                                               evaluation.evaluator->root_name(), check_options);
   std::error_code ec;
   fs::remove(file, ec);
@@ -218,9 +218,11 @@ bool write_manifest(const Converted& converted, const std::string& path, std::st
       error);
 }
 
-// Loads the file with its bundles, picks the root model and evaluates it. False when the file cannot be read.
-bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
-              std::ostream& text, Converted& converted, std::ostream& err) {
+// The whole conversion: loads the file with its bundles, picks the root model, evaluates it, resolves the
+// system, assembles it (SNAP) and emits the MJCF (and --check's run, --dump's text). False when the file
+// cannot be read.
+bool convert(const CliOptions& options, fe::SourceManager& sources, fe::DiagnosticSink& sink,
+             std::ostream& text, Converted& converted, std::ostream& err) {
   PassTimer timer;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.input, ec)) {
@@ -244,12 +246,12 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
     fe::dump_values(text, *evaluation.evaluator, evaluation.root);
   }
   // Assembly is part of checking a model, so it runs whether or not its frames are printed.
-  snap::ResolvedSystem view = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
+  snap::ResolvedSystem system = snap::resolve_system(*evaluation.evaluator, evaluation.root, sink);
   timer.lap("resolve system", evaluation.evaluator->graph().objects.size());
-  const snap::SnapResult& assembled = snap::run_snap(view, sink);
+  const snap::SnapResult& assembled = snap::run_snap(system, sink);
   timer.lap("snap");
   if (options.dump == DumpKind::Snap)
-    snap::dump_snap(text, view, assembled, evaluation.evaluator->root_name());
+    snap::dump_snap(text, system, assembled, evaluation.evaluator->root_name());
   if (options.dump != DumpKind::None || sink.has_errors()) return true;
   namespace fs = std::filesystem;
   const bool to_file = options.output && *options.output != "-";
@@ -265,21 +267,21 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   emit_options.collada_ignore_up_axis = options.collada_ignore_up_axis;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
-  mjcf::Emitted emitted = mjcf::emit_mjcf(view, emit_options, sink);
+  mjcf::Emitted emitted = mjcf::emit_mjcf(system, emit_options, sink);
   timer.lap("emit");
   if (sink.has_errors()) return true;
   std::string xml = emitted.document.to_string();
   timer.lap("print xml");
   // --check reads converted meshes inline, as the emitter's drafts did: no mesh file exists before the
   // output.
-  if (options.check) check(options, xml, emit_options, view, assembled, evaluation, sink);
+  if (options.check) check(options, xml, emit_options, system, assembled, evaluation, sink);
   if (!options.output) return true;  // without -o the model is only checked
   if (options.pose) {
     mjcf::place_model(emitted.document, *options.pose);
     xml = emitted.document.to_string();
   }
   if (options.depfile) {
-    converted.asset_inputs = asset_files(emitted.document, emit_options.output_dir);
+    converted.asset_inputs = files_the_mjcf_reads(emitted.document, emit_options.output_dir);
     for (const mjcf::ConvertedMesh& mesh : emitted.converted_meshes)
       converted.asset_inputs.push_back(fs::absolute(mesh.source).lexically_normal().string());
   }
@@ -293,7 +295,7 @@ bool evaluate(const CliOptions& options, fe::SourceManager& sources, fe::Diagnos
   converted.timestep = emit_options.timestep;
   converted.mujoco = options.mujoco3 ? "3" : "2.2.2";
   converted.emitted = std::move(emitted);
-  leave_to_exit(std::move(view));
+  leave_to_exit(std::move(system));
   leave_to_exit(std::move(evaluation));
   return true;
 }
@@ -577,7 +579,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     } else {
       fe::dump_ast(text, file, fe::parse_file(sources, *file_id, sink));
     }
-  } else if (!evaluate(*options, sources, sink, text, converted, err)) {
+  } else if (!convert(*options, sources, sink, text, converted, err)) {
     return kExitInputError;
   }
 

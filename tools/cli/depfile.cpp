@@ -28,7 +28,7 @@ std::string escaped(const std::string& path) {
 
 }  // namespace
 
-std::vector<std::string> asset_files(const mjcf::Element& document, const std::string& output_dir) {
+std::vector<std::string> files_the_mjcf_reads(const mjcf::Element& document, const std::string& output_dir) {
   std::vector<std::string> files;
   std::vector<const mjcf::Element*> stack{&document};
   while (!stack.empty()) {

@@ -12,7 +12,7 @@ namespace openplx::cli {
 
 // The files MuJoCo will read for `document` (its assets' `file` attributes), absolute; relative ones are
 // taken from `output_dir`, as MuJoCo takes them from the model's folder.
-std::vector<std::string> asset_files(const mjcf::Element& document, const std::string& output_dir);
+std::vector<std::string> files_the_mjcf_reads(const mjcf::Element& document, const std::string& output_dir);
 
 // Every file of `sources` read from disk (the model, the OpenPLX files and bundles it reaches, URDFs),
 // absolute; texts that are no file (the embedded bundles, generated imports) are left out.

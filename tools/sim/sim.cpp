@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "mjcf_emitter/xml.h"
+#include "contract/numbers.h"
 #include "openplx/runtime/simulation.h"
 #include "tools/sim/sim_options.h"
 

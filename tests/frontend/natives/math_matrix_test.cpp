@@ -52,8 +52,6 @@ Matrix4d affine(const Matrix3d& block, const Vector3d& t) {
   return m;
 }
 
-}  // namespace
-
 TEST(MathMatrix3, FromRowMajorIsRowMajor) {
   const std::vector<double> v = {1, 2, 3, 4, 5, 6, 7, 8, 9};
   const auto m = nat::matrix3_from_row_major(v);
@@ -164,3 +162,5 @@ TEST(MathLine, Length) {
   EXPECT_EQ(nat::line_length(Vector3d(1, 2, 3), Vector3d(1, 2, 3)), 0.0);
   EXPECT_NEAR(nat::line_length(Vector3d(0, 0, 0), Vector3d(1, 1, 1)), std::sqrt(3.0), 1e-15);
 }
+
+}  // namespace

@@ -91,8 +91,6 @@ double rotation_angle(const Quaterniond& q) {
   return 2 * std::atan2(q.vec().norm(), std::abs(q.w()));
 }
 
-}  // namespace
-
 // ---- Quat basics -------------------------------------------------------------------------------------
 
 TEST(MathQuat, FromXyzwKeepsOpenPlxFieldOrder) {
@@ -470,3 +468,5 @@ TEST(MathAffine, FromAxesAgreesWithSnapQuaternionConstruction) {
     EXPECT_LT(max_diff(matrix_of(a->rotation), matrix_of(q)), kTol);
   }
 }
+
+}  // namespace

@@ -15,7 +15,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kUlp = 1e-15;
 using V = std::vector<double>;
-}  // namespace
 
 TEST(MathFunctions, Trigonometry) {
   EXPECT_EQ(nat::sin(0), 0.0);
@@ -102,3 +101,5 @@ TEST(MathFunctions, InfinitiesAndAngleUnits) {
   EXPECT_NEAR(nat::deg_to_rad(-45), -kPi / 4, kUlp);
   EXPECT_EQ(nat::rad_to_deg(0), 0.0);
 }
+
+}  // namespace

@@ -23,7 +23,7 @@
 #include <string_view>
 #include <vector>
 
-#include "openplx/runtime/simulation.h"
+#include "openplx/runtime/signals.h"
 
 namespace openplx::runtime {
 
@@ -33,7 +33,7 @@ class SignalBridge {
   // `model`; empty: the one it was emitted with (the manifest records it). Throws LoadError when the
   // manifest cannot be read, is inconsistent in itself (a binding or law the runtime could not use), was
   // written for another model (its fingerprint, over the model's own bodies and joints by name without
-  // the prefix, differs from `model`'s: see mjcf_emitter/model_fingerprint.h; manifests without one skip
+  // the prefix, differs from `model`'s: see contract/model_fingerprint.h; manifests without one skip
   // this), names any element `model` lacks or has of another kind, has a newer format_version than this
   // runtime reads, or when a bridge for the same prefix is already attached to `data` (two would disagree;
   // the first must be destroyed before another attaches). A `model` stepping at another time step than the

@@ -1,9 +1,9 @@
-#include "frontend/semantics/edit_distance.h"
+#include "contract/edit_distance.h"
 
 #include <algorithm>
 #include <vector>
 
-namespace openplx::frontend {
+namespace openplx {
 
 size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<size_t> row(b.size() + 1);  // one row of the table: distances from a's prefix to b's prefixes
@@ -20,4 +20,4 @@ size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-}  // namespace openplx::frontend
+}  // namespace openplx

@@ -1,5 +1,5 @@
 // The few mjModel/mjData fields the runtime touches whose place changed in MuJoCo 3.0, behind one accessor
-// each, so the runtime compiles against 2.2.2 and 3.x headers (spec/mujoco3-notes.md 4.3):
+// each, so the runtime compiles against 2.2.2 and 3.x headers (docs/runtime.md "MuJoCo versions"):
 // - an equality's on/off switch moved from mjModel::eq_active to mjData::eq_active (3.0.0; the model keeps
 //   eq_active0, the value mj_resetData restores);
 // - a tendon's spring rest length became a (low, high) dead band, mjModel::tendon_lengthspring[2 * id].

@@ -1,4 +1,4 @@
-#include "mjcf_emitter/instability.h"
+#include "mujoco_support/instability.h"
 
 #include <cmath>
 #include <cstdio>

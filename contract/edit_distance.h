@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <string_view>
 
-namespace openplx::frontend {
+namespace openplx {
 
 size_t edit_distance(std::string_view a, std::string_view b);
 
-}  // namespace openplx::frontend
+}  // namespace openplx

@@ -1,4 +1,4 @@
-#include "runtime/manifest_reader.h"
+#include "contract/manifest_reader.h"
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -8,22 +8,17 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "openplx/runtime/simulation.h"
-
-namespace openplx::runtime {
+namespace openplx::mjcf {
 
 namespace {
 
-using mjcf::MjObject;
-using mjcf::Quantity;
-using mjcf::SignalValue;
 using nlohmann::json;
 
 // Enums by the names to_string gives them; each enum runs from 0 to its last enumerator.
 template <typename E>
 E parse_enum(const std::string& text, E last, const char* what) {
   for (int k = 0; k <= static_cast<int>(last); ++k) {
-    if (mjcf::to_string(static_cast<E>(k)) == text) return static_cast<E>(k);
+    if (to_string(static_cast<E>(k)) == text) return static_cast<E>(k);
   }
   throw std::invalid_argument(std::string("unknown ") + what + " `" + text + "`");
 }
@@ -44,8 +39,8 @@ std::vector<double> reals(const json& v) {
   return out;
 }
 
-mjcf::SignalBinding binding(const json& j) {
-  mjcf::SignalBinding b;
+SignalBinding binding(const json& j) {
+  SignalBinding b;
   b.path = j.at("path").get<std::string>();
   b.input = j.at("direction").get<std::string>() == "input";
   b.type = j.at("type").get<std::string>();
@@ -66,14 +61,14 @@ mjcf::SignalBinding binding(const json& j) {
   return b;
 }
 
-mjcf::RuntimeLaw law(const json& j) {
-  mjcf::RuntimeLaw l;
+RuntimeLaw law(const json& j) {
+  RuntimeLaw l;
   const std::string kind = j.at("kind").get<std::string>();
   bool known = false;
-  for (mjcf::RuntimeLaw::Kind k : {mjcf::RuntimeLaw::Kind::Engine, mjcf::RuntimeLaw::Kind::TorqueConverter,
-                                   mjcf::RuntimeLaw::Kind::Spring, mjcf::RuntimeLaw::Kind::VelocityMotor,
-                                   mjcf::RuntimeLaw::Kind::Compliance, mjcf::RuntimeLaw::Kind::RigidRows}) {
-    if (kind == mjcf::to_string(k)) {
+  for (RuntimeLaw::Kind k :
+       {RuntimeLaw::Kind::Engine, RuntimeLaw::Kind::TorqueConverter, RuntimeLaw::Kind::Spring,
+        RuntimeLaw::Kind::VelocityMotor, RuntimeLaw::Kind::Compliance, RuntimeLaw::Kind::RigidRows}) {
+    if (kind == to_string(k)) {
       l.kind = k;
       known = true;
     }
@@ -175,7 +170,7 @@ bool all_finite(const std::vector<double>& values) {
 
 // Why the runtime cannot use binding `b` as it stands ("" when it can): everything it indexes or computes
 // with must be there and finite.
-std::string binding_problem(const mjcf::SignalBinding& b) {
+std::string binding_problem(const SignalBinding& b) {
   const Quantity q = b.quantity;
   if (q == Quantity::None) return "";
   if (!object_fits(q, b.object)) {
@@ -258,8 +253,8 @@ std::string binding_problem(const mjcf::SignalBinding& b) {
   return "";
 }
 
-std::string law_problem(const mjcf::RuntimeLaw& l) {
-  using Kind = mjcf::RuntimeLaw::Kind;
+std::string law_problem(const RuntimeLaw& l) {
+  using Kind = RuntimeLaw::Kind;
   const size_t wanted = l.kind == Kind::TorqueConverter                           ? 2
                         : l.kind == Kind::Compliance || l.kind == Kind::RigidRows ? 0
                                                                                   : 1;
@@ -299,7 +294,7 @@ std::string law_problem(const mjcf::RuntimeLaw& l) {
 
 Manifest read_manifest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw LoadError(path + ": error: cannot open the signal manifest\n");
+  if (!in) throw ManifestError(path + ": error: cannot open the signal manifest\n");
   std::ostringstream text;
   text << in.rdbuf();
   return parse_manifest(text.str(), path);
@@ -311,10 +306,11 @@ Manifest parse_manifest(const std::string& text, const std::string& path) {
     const json j = json::parse(text);
     // First: a newer format may have changed whatever follows.
     m.format_version = j.value("format_version", 0);
-    if (m.format_version > mjcf::kManifestFormatVersion) {
-      throw LoadError(path + ": error: the manifest's format_version is " + std::to_string(m.format_version) +
-                      " but this runtime reads up to " + std::to_string(mjcf::kManifestFormatVersion) +
-                      " (a newer openplx2mjcf wrote it: use the runtime of that version)\n");
+    if (m.format_version > kManifestFormatVersion) {
+      throw ManifestError(path + ": error: the manifest's format_version is " +
+                          std::to_string(m.format_version) + " but this runtime reads up to " +
+                          std::to_string(kManifestFormatVersion) +
+                          " (a newer openplx2mjcf wrote it: use the runtime of that version)\n");
     }
     m.model = j.at("model").get<std::string>();
     m.prefix = j.value("prefix", std::string());
@@ -327,22 +323,22 @@ Manifest parse_manifest(const std::string& text, const std::string& path) {
     if (j.contains("laws")) {
       for (const json& l : j.at("laws")) m.laws.push_back(law(l));
     }
-  } catch (const LoadError&) {
+  } catch (const ManifestError&) {
     throw;
   } catch (const std::exception& e) {  // nlohmann's parse, type and key errors, and ours
-    throw LoadError(path + ": error: not a signal manifest: " + e.what() + "\n");
+    throw ManifestError(path + ": error: not a signal manifest: " + e.what() + "\n");
   }
   if (!(m.timestep >= 0 && std::isfinite(m.timestep)))
-    throw LoadError(path + ": error: its timestep is not a positive number of seconds\n");
-  for (const mjcf::SignalBinding& b : m.signals) {
+    throw ManifestError(path + ": error: its timestep is not a positive number of seconds\n");
+  for (const SignalBinding& b : m.signals) {
     if (const std::string problem = binding_problem(b); !problem.empty())
-      throw LoadError(path + ": error: signal `" + b.path + "`: " + problem + "\n");
+      throw ManifestError(path + ": error: signal `" + b.path + "`: " + problem + "\n");
   }
-  for (const mjcf::RuntimeLaw& l : m.laws) {
+  for (const RuntimeLaw& l : m.laws) {
     if (const std::string problem = law_problem(l); !problem.empty())
-      throw LoadError(path + ": error: law of `" + l.path + "`: " + problem + "\n");
+      throw ManifestError(path + ": error: law of `" + l.path + "`: " + problem + "\n");
   }
   return m;
 }
 
-}  // namespace openplx::runtime
+}  // namespace openplx::mjcf

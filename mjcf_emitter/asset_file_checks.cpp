@@ -1,4 +1,4 @@
-#include "mjcf_emitter/asset_files.h"
+#include "mjcf_emitter/asset_file_checks.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

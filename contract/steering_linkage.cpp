@@ -1,6 +1,6 @@
 // Kinematic steering linkages: closed-form loop closure, the reachable input range, polynomial fits
 // (geometry in steering_linkage.h).
-#include "mjcf_emitter/steering_linkage.h"
+#include "contract/steering_linkage.h"
 
 #include <Eigen/Dense>
 #include <algorithm>

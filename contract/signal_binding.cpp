@@ -1,4 +1,4 @@
-#include "mjcf_emitter/signal_binding.h"
+#include "contract/signal_binding.h"
 
 #include <cmath>
 #include <cstdint>
@@ -8,7 +8,7 @@
 #include <array>
 #include <utility>
 
-#include "mjcf_emitter/xml.h"
+#include "contract/numbers.h"
 
 namespace openplx::mjcf {
 
