@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace openplx::mjcf {
@@ -45,6 +46,8 @@ uint32_t big_endian32(const std::string& bytes, size_t at) {
 struct Mesh {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> faces;  // 0-based
+  std::vector<size_t> face_lines;         // an OBJ face's line, one per triangle
+  size_t first_object_faces = 0;          // how many faces MuJoCo reads of an OBJ (its first object's)
 };
 
 std::string bad_vertex(const Eigen::Vector3d& v, size_t index) {
@@ -89,38 +92,127 @@ int obj_index(const std::string& token, size_t vertices) {
   return k != 0 && index >= 0 && index < n ? static_cast<int>(index) : -1;
 }
 
+// Whether a face corner's texture-coordinate and normal indices ("3/1", "3//2", "3/1/2", negatives counting
+// back) name ones given before it: MuJoCo 2.2.2 uses them unchecked, and one far out of range crashes it.
+bool obj_attribute_indices_valid(const std::string& token, size_t texcoords, size_t normals) {
+  size_t at = token.find('/');
+  for (size_t count : {texcoords, normals}) {
+    if (at == std::string::npos) return true;
+    const size_t begin = at + 1;
+    at = token.find('/', begin);
+    const std::string part = token.substr(begin, at == std::string::npos ? std::string::npos : at - begin);
+    if (part.empty()) continue;  // "3//2": no texture coordinate
+    char* end = nullptr;
+    const long k = std::strtol(part.c_str(), &end, 10);
+    const long n = static_cast<long>(count);
+    const long index = k > 0 ? k - 1 : n + k;
+    if (*end != '\0' || k == 0 || index < 0 || index >= n) return false;
+  }
+  return at == std::string::npos;  // no fourth part
+}
+
+// The whitespace `std::istream >> std::string` skips in the classic locale.
+bool obj_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+}
+
+// The next whitespace-separated word of `line` (advanced past it); empty at the end.
+std::string_view next_word(std::string_view& line) {
+  size_t begin = 0;
+  while (begin < line.size() && obj_space(line[begin])) ++begin;
+  size_t end = begin;
+  while (end < line.size() && !obj_space(line[end])) ++end;
+  const std::string_view word = line.substr(begin, end - begin);
+  line.remove_prefix(end);
+  return word;
+}
+
 std::string read_obj(const std::string& bytes, Mesh& mesh) {
-  std::istringstream lines(bytes);
-  std::string line;
-  for (size_t number = 1; std::getline(lines, line); ++number) {
-    std::istringstream words(line);
-    std::string kind;
-    words >> kind;
-    const std::string at = "line " + std::to_string(number) + ": ";
+  // Lines and words as std::getline and `>>` split them, without a stream per line (a stream's construction
+  // was a third of reading a mesh-heavy robot); numbers go through strtod and strtol as before, from one
+  // reused buffer.
+  std::string word;  // the current word, NUL-terminated for strtod and strtol
+  std::vector<double> values;
+  std::vector<int> corners;
+  bool first_object_ended = false;
+  size_t texcoords = 0, normals = 0;
+  size_t start = 0;
+  for (size_t number = 1; start < bytes.size(); ++number) {
+    const size_t eol = bytes.find('\n', start);
+    std::string_view line(bytes.data() + start, (eol == std::string::npos ? bytes.size() : eol) - start);
+    start = eol == std::string::npos ? bytes.size() : eol + 1;
+    const std::string_view kind = next_word(line);
+    auto at = [number] { return "line " + std::to_string(number) + ": "; };
+    // MuJoCo 2.2.2 reads the faces of the file's first object (tinyobjloader's first shape): an `o` or `g`
+    // after faces ends it.
+    if ((kind == "o" || kind == "g") && !mesh.faces.empty()) first_object_ended = true;
+    texcoords += kind == "vt" ? 1 : 0;
+    normals += kind == "vn" ? 1 : 0;
     if (kind == "v") {
-      std::vector<double> values;
-      for (std::string word; words >> word;) {
+      values.clear();
+      for (std::string_view w = next_word(line); !w.empty(); w = next_word(line)) {
+        word.assign(w);
         char* end = nullptr;
         values.push_back(std::strtod(word.c_str(), &end));
-        if (*end != '\0') return at + "vertex coordinate '" + word + "' is no number";
+        if (*end != '\0') return at() + "vertex coordinate '" + word + "' is no number";
       }
       if (values.size() < 3 || values.size() > 7)  // x y z, optionally w or a colour
-        return at + "a vertex of " + std::to_string(values.size()) + " numbers, not 3";
+        return at() + "a vertex of " + std::to_string(values.size()) + " numbers, not 3";
       mesh.vertices.emplace_back(values[0], values[1], values[2]);
       if (std::string bad = bad_vertex(mesh.vertices.back(), mesh.vertices.size() - 1); !bad.empty())
-        return at + bad;
+        return at() + bad;
     } else if (kind == "f") {
-      std::vector<int> corners;
-      for (std::string word; words >> word;) {
+      corners.clear();
+      for (std::string_view w = next_word(line); !w.empty(); w = next_word(line)) {
+        word.assign(w);
         corners.push_back(obj_index(word, mesh.vertices.size()));
-        if (corners.back() < 0) return at + "face corner '" + word + "' names no vertex before it";
+        if (corners.back() < 0) return at() + "face corner '" + word + "' names no vertex before it";
+        if (!obj_attribute_indices_valid(word, texcoords, normals))
+          return at() + "face corner '" + word +
+                 "' names a texture coordinate or normal not given before it (" + std::to_string(texcoords) +
+                 " and " + std::to_string(normals) + " are)";
       }
-      if (corners.size() < 3) return at + "a face of fewer than 3 corners";
-      for (size_t k = 1; k + 1 < corners.size(); ++k)
+      if (corners.size() < 3) return at() + "a face of fewer than 3 corners";
+      for (size_t k = 1; k + 1 < corners.size(); ++k) {  // fanned from the first corner, as MuJoCo 2.2.2 does
         mesh.faces.push_back({corners[0], corners[k], corners[k + 1]});
+        mesh.face_lines.push_back(number);
+      }
+      if (!first_object_ended) mesh.first_object_faces = mesh.faces.size();
     }
   }
   return {};
+}
+
+// MuJoCo 2.2.2 refuses an OBJ whose faces run along one edge in the same direction (two faces from vertex a
+// to vertex b: one of them is turned inside out, or the face is there twice). It compares the file's vertex
+// indices, not positions, and counts every face of the first object, degenerate ones too. It asks only where
+// it computes a geom's inertia from the mesh (a body without <inertial>, inertiafromgeom="true" in a scene
+// that includes the file, a primitive fitted to it), so it is held to everywhere.
+std::string orientation_problem(const Mesh& mesh) {
+  // Every directed edge (from << 32 | to) with the face that runs it, sorted so that a repeated edge is
+  // adjacent (a sorted array: a fraction of a hash map's memory on a large mesh).
+  std::vector<std::pair<uint64_t, size_t>> edges;
+  edges.reserve(3 * mesh.first_object_faces);
+  for (size_t f = 0; f < mesh.first_object_faces; ++f)
+    for (int k = 0; k < 3; ++k)
+      edges.emplace_back(uint64_t{static_cast<uint32_t>(mesh.faces[f][k])} << 32 |
+                             static_cast<uint32_t>(mesh.faces[f][(k + 1) % 3]),
+                         f);
+  std::sort(edges.begin(), edges.end());
+  size_t clash = 0;  // the repeated edge named: its later face first in the file, then its earlier one
+  for (size_t k = 1; k < edges.size(); ++k) {
+    if (edges[k].first != edges[k - 1].first) continue;
+    if (!clash || std::pair(edges[k].second, edges[k - 1].second) <
+                      std::pair(edges[clash].second, edges[clash - 1].second))
+      clash = k;
+  }
+  if (!clash) return {};
+  const uint64_t edge = edges[clash].first;
+  return "its faces have inconsistent orientation (MuJoCo 2.2.2 refuses it): the faces on lines " +
+         std::to_string(mesh.face_lines[edges[clash - 1].second]) + " and " +
+         std::to_string(mesh.face_lines[edges[clash].second]) + " both run from vertex " +
+         std::to_string((edge >> 32) + 1) + " to vertex " + std::to_string((edge & 0xffffffffu) + 1) +
+         ", so one is turned inside out or given twice";
 }
 
 std::string read_msh(const std::string& bytes, Mesh& mesh) {
@@ -201,7 +293,9 @@ uint32_t crc32(const char* data, size_t size) {
 }  // namespace
 
 std::string vertices_problem(const std::vector<Eigen::Vector3d>& vertices) {
-  return solid_problem(Mesh{vertices, {}});
+  Mesh mesh;
+  mesh.vertices = vertices;
+  return solid_problem(mesh);
 }
 
 std::string converted_mesh_problem(const TriangleMesh& converted) {
@@ -225,7 +319,9 @@ std::string mesh_file_problem(const std::string& path) {
                               : ext == ".msh" ? read_msh(bytes, mesh)
                                               : read_obj(bytes, mesh);
   if (!problem.empty()) return problem;
-  return solid_problem(mesh);
+  if (std::string solid = solid_problem(mesh); !solid.empty()) return solid;
+  // A binary STL reaches MuJoCo's check as separate triangles, and an MSH is not checked.
+  return ext != ".stl" && ext != ".msh" ? orientation_problem(mesh) : std::string();
 }
 
 std::string png_file_problem(const std::string& path) {

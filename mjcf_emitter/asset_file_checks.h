@@ -1,8 +1,8 @@
 // Mesh and image files read before MuJoCo reads them: a file MuJoCo 2.2.2 cannot use (garbage, truncated,
-// NaN vertices, a flat mesh qhull cannot wrap, a PNG that is none) otherwise fails the draft compile or the
-// user's load with an unlocated message, qhull's raw text on stderr, or a crash (an OBJ vertex of two
-// numbers). These checks follow MuJoCo 2.2.2's own readers (user_mesh.cc, lodepng), so a file that passes
-// them loads.
+// NaN vertices, a flat mesh qhull cannot wrap, an OBJ with faces turned inside out, a PNG that is none)
+// otherwise fails the draft compile or the user's load with an unlocated message, qhull's raw text on stderr,
+// or a crash (an OBJ vertex of two numbers). These checks follow MuJoCo 2.2.2's own readers (user_mesh.cc,
+// lodepng), so a file that passes them loads.
 #pragma once
 
 #include <Eigen/Core>
@@ -13,7 +13,8 @@
 
 namespace openplx::mjcf {
 
-// Why MuJoCo 2.2.2 cannot make a mesh of the OBJ, binary STL or MSH file at `path`; empty when it can.
+// Why MuJoCo 2.2.2 cannot make a mesh of the OBJ, binary STL or MSH file at `path`; empty when it can. An
+// OBJ's faces must also be consistently oriented: no two run along one edge in the same direction.
 std::string mesh_file_problem(const std::string& path);
 
 // Why MuJoCo 2.2.2 cannot make a solid mesh of these vertices (non-finite, fewer than 4, all on one plane:

@@ -197,6 +197,20 @@ std::string Lowering::mesh_asset(const sn::Geometry& g) {
   return mesh_name;
 }
 
+// Said once per COLLADA file whose <up_axis> (`up`, Y_UP or X_UP) makes the two readings differ, at the first
+// geometry that names it.
+void Lowering::note_collada_up_axis(const sn::Geometry& g, const std::string& up) {
+  const std::string declares = "mesh file " + g.file + " declares <up_axis>" + up + "</up_axis>: ";
+  sink_.report(fe::DiagCode::MjcfColladaUpAxis, g.where,
+               options_.collada_up_axis
+                   ? declares +
+                         "it was turned so that its up axis is +Z (--collada-up-axis), as COLLADA "
+                         "defines; RViz and Gazebo show it unturned"
+                   : declares +
+                         "its coordinates were taken as written, as RViz and Gazebo show them; "
+                         "--collada-up-axis turns its up axis onto +Z, as COLLADA defines");
+}
+
 // A mesh file MuJoCo 2.2.2 cannot read, read with assimp once per file and held inline; the geometries of one
 // file and scale share one asset. Writing to a file, the converter moves it into a file (mesh_files.h).
 std::string Lowering::converted_mesh_asset(const sn::Geometry& g) {
@@ -204,12 +218,14 @@ std::string Lowering::converted_mesh_asset(const sn::Geometry& g) {
   if (first) {
     auto mesh = std::make_shared<TriangleMesh>();
     read->second.problem = read_mesh_with_assimp(g.file, *mesh);
-    // COLLADA's up axis onto MuJoCo's +Z, as the format defines it; RViz and Gazebo take the coordinates as
-    // written instead, so a file whose up is not Z shows differently there: said, with the way to match them.
-    read->second.up_axis = read->second.problem.empty() ? collada_up_axis(g.file) : "";
-    if (read->second.up_axis == "Z_UP") read->second.up_axis.clear();
-    if (!read->second.up_axis.empty() && !options_.collada_ignore_up_axis)
-      turn_up_axis_onto_z(*mesh, read->second.up_axis);
+    // COLLADA coordinates as written, as RViz and Gazebo show them (where robots are drawn and checked);
+    // --collada-up-axis turns <up_axis> onto MuJoCo's +Z, as the standard defines it. Where the two differ,
+    // one note per file says which was taken.
+    std::string up = read->second.problem.empty() ? collada_up_axis(g.file) : "";
+    if (!up.empty() && up != "Z_UP") {
+      if (options_.collada_up_axis) turn_up_axis_onto_z(*mesh, up);
+      note_collada_up_axis(g, up);
+    }
     if (read->second.problem.empty()) read->second.problem = converted_mesh_problem(*mesh);
     if (read->second.problem.empty()) read->second.mesh = std::move(mesh);
   }
@@ -218,15 +234,6 @@ std::string Lowering::converted_mesh_asset(const sn::Geometry& g) {
         g, fe::DiagCode::MjcfBadAsset,
         "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + read->second.problem);
     return {};
-  }
-  if (const std::string& up = read->second.up_axis; !up.empty()) {
-    warn(g.where, "mesh file " + g.file + " of `" + g.path + ".path` declares <up_axis>" + up +
-                      "</up_axis>: " +
-                      (options_.collada_ignore_up_axis
-                           ? "its coordinates were taken as written (--collada-ignore-up-axis), as RViz and "
-                             "Gazebo show it, not turned as COLLADA defines"
-                           : "it was turned so that its up axis is +Z, as COLLADA defines; RViz and Gazebo "
-                             "take the coordinates as written (--collada-ignore-up-axis does so too)"));
   }
   const std::string key =
       g.file + '\n' + number(g.scale.x()) + ' ' + number(g.scale.y()) + ' ' + number(g.scale.z());

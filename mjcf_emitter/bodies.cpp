@@ -201,7 +201,7 @@ void Lowering::emit_inertial(Element& body, int node) {
 }
 
 // MuJoCo 2.2.2 diagonalises a fullinertia itself (mju_eig3), takes it only when the smallest of its moments
-// is at least mjMINVAL, and refuses moments that break A + B >= C exactly. The check runs on the numbers
+// is at least 1e-14, and refuses moments that break A + B >= C exactly. The check runs on the numbers
 // MuJoCo will see: fullinertia for a tensor in the body's axes; principal moments and axes from the tensor in
 // its own frame where that frame is turned (as MuJoCo's URDF importer diagonalises the <inertia> it reads),
 // or where fullinertia would be refused (an ideal rod). Moments MuJoCo would refuse become their mean (its
@@ -214,7 +214,10 @@ void Lowering::write_inertial(Element& body, double mass, const Eigen::Vector3d&
   const mi::Principal p = mi::principal_moments(tensor);
   const bool turned = !(axes.w() == 1 && axes.x() == 0 && axes.y() == 0 && axes.z() == 0);
   const bool accepted = !mi::negative(p.moments) && mi::triangle(p.moments);
-  if (!turned && accepted && p.moments[2] >= mjMINVAL) {
+  // Measured on 2.2.2: a fullinertia whose smallest eigenvalue is below 1e-14 (not mjMINVAL) is refused
+  // ("inertia must have positive eigenvalues"); principal moments down to mjMINVAL are taken.
+  constexpr double kFullInertiaFloor = 1e-14;
+  if (!turned && accepted && p.moments[2] >= kFullInertiaFloor) {
     inertial.set("fullinertia", full_inertia(tensor));
     return;
   }

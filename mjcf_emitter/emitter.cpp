@@ -48,8 +48,8 @@ Emitted Lowering::run() {
                         .set("timestep", options_.timestep)
                         .set("gravity", gravity())
                         .set("integrator", "Euler");
-  // Room for track links' contacts, sized by the tracks pass (tracks.cpp) once it knows the links it made.
-  if (!system_.tracks.empty()) size_ = &root.add("size");
+  // Room for contacts, sized once the tracks pass (tracks.cpp) knows the links it made.
+  size_ = &root.add("size");
   for (const sn::Unsupported& u : system_.unsupported) {
     warn(u.where, "`" + u.path + "` is a " + u.type +
                       ", which has no MuJoCo 2.2.2 counterpart; it and its parts "
@@ -96,6 +96,7 @@ Emitted Lowering::run() {
     out.manifest_json = manifest_json(options_.model_name, options_.prefix, out.signals, out.laws);
   stiffen_equalities(root);
   finish_with_draft(root);
+  enforce_moving_body_inertia();
   exclude_initial_overlaps(root);
   // A light, framing and colours for viewers (viewer_defaults.h); after the draft, whose <statistic> it
   // completes.

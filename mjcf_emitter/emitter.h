@@ -42,8 +42,9 @@ struct EmitOptions {
   // --urdf-exact-mesh-mass: a URDF link without <inertial> takes its mesh volumes exactly, as OpenPLX bodies
   // do, instead of as MuJoCo 2.2.2's URDF importer computes them (its legacy formula; docs/urdf.md).
   bool urdf_exact_mesh_mass = false;
-  // COLLADA coordinates taken as written, as RViz and Gazebo show them, instead of turning <up_axis> onto +Z.
-  bool collada_ignore_up_axis = false;
+  // A COLLADA file's <up_axis> turned onto +Z, as the COLLADA standard defines it. Off by default: RViz and
+  // Gazebo take the coordinates as written, and robots are drawn (and checked by their authors) there.
+  bool collada_up_axis = false;
 };
 
 // A <mesh> asset read from a file MuJoCo cannot read (mesh_conversion.h): `document` holds it inline.

@@ -154,10 +154,12 @@ class Lowering {
   void emit_distance_mates(Element& root);
   std::optional<MateCompliance> compliance(const sn::Mate& mate);
   void finish_with_draft(Element& root);
-  void finish_velocity_stand_ins(Element& root);     // velocity_motors.cpp
-  void finish_servo_gains(const DraftModel& draft);  // velocity_motors.cpp
-  void collect_rigid_rows(Element& root);            // rigid_rows.cpp
-  void emit_compliant_dofs(Element& root);           // compliant_dofs.cpp
+  void enforce_moving_body_inertia();  // moving_body_inertia.cpp: MuJoCo's mjMINVAL rule, last
+  void size_contact_buffers(Element& root, int extra_contacts, int extra_rows);  // contact_buffers.cpp
+  void finish_velocity_stand_ins(Element& root);                                 // velocity_motors.cpp
+  void finish_servo_gains(const DraftModel& draft);                              // velocity_motors.cpp
+  void collect_rigid_rows(Element& root);                                        // rigid_rows.cpp
+  void emit_compliant_dofs(Element& root);                                       // compliant_dofs.cpp
   void stiffen_equalities(Element& root);
   std::string rigid_solref() const;
   static std::string rigid_solimp();
@@ -169,6 +171,7 @@ class Lowering {
   std::string vertex_mesh_asset(const sn::Geometry& g);
   std::string mesh_asset(const sn::Geometry& g);
   std::string converted_mesh_asset(const sn::Geometry& g);
+  void note_collada_up_axis(const sn::Geometry& g, const std::string& up);
   void mesh_left_out(const sn::Geometry& g, fe::DiagCode code, const std::string& message);
 
   // --------------------------------------------------------------------------------- keyframe.cpp
@@ -319,12 +322,11 @@ class Lowering {
   struct ReadMesh {
     std::shared_ptr<const TriangleMesh> mesh;
     std::string problem;
-    std::string up_axis;  // a COLLADA file's <up_axis> other than Z_UP
   };
   std::map<std::string, ReadMesh> read_meshes_;
   std::map<std::string, std::string> converted_assets_;  // file and scale -> its <mesh> asset
   std::vector<ConvertedMesh> converted_meshes_;          // handed to Emitted
-  Element* size_ = nullptr;  // <size>, when the model has tracks (tracks.cpp fills it in or drops it)
+  Element* size_ = nullptr;  // <size>, filled in or dropped once tracks are made (contact_buffers.cpp)
   struct DriveEdge {
     int from;        // shaft
     int to;          // shaft, -1 for an actuator

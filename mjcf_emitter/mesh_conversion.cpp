@@ -12,7 +12,10 @@
 #include <vector>
 
 #include "frontend/platform/loadable_module.h"
+#include "mjcf_emitter/mesh_input_file.h"
 #include "mjcf_emitter/mesh_module_abi.h"
+#include "mjcf_emitter/mesh_reader_process.h"
+#include "mjcf_emitter/mesh_references.h"
 
 namespace openplx::mjcf {
 namespace {
@@ -64,11 +67,6 @@ const LoadedModule& loaded_module() {
   return module;
 }
 
-struct ReadResult {
-  TriangleMesh* mesh;
-  std::string problem;
-};
-
 void append_float(std::string& out, float value) {
   char text[32];
   const auto end = std::to_chars(text, text + sizeof(text), value).ptr;  // shortest that reads back
@@ -97,18 +95,17 @@ std::string stl_bytes(const TriangleMesh& mesh) {
   return bytes;
 }
 
+// A triangle soup, as the inline form (vertex_text): MuJoCo's OBJ reader gives every triangle its own
+// vertices anyway, but checks orientation on the file's shared ones.
 std::string obj_bytes(const TriangleMesh& mesh) {
   std::string text;
-  for (size_t v = 0; v < mesh.vertices.size(); v += 3) {
+  for (uint32_t corner : mesh.faces) {
     text += 'v';
-    for (int c = 0; c < 3; ++c) (text += ' '), append_float(text, mesh.vertices[v + c]);
+    for (int c = 0; c < 3; ++c) (text += ' '), append_float(text, mesh.vertices[3 * corner + c]);
     text += '\n';
   }
-  for (size_t f = 0; f < mesh.faces.size(); f += 3) {
-    text += 'f';
-    for (int k = 0; k < 3; ++k) (text += ' ') += std::to_string(mesh.faces[f + k] + 1);
-    text += '\n';
-  }
+  for (size_t f = 0; f < mesh.faces.size(); f += 3)
+    text += "f " + std::to_string(f + 1) + ' ' + std::to_string(f + 2) + ' ' + std::to_string(f + 3) + '\n';
   return text;
 }
 
@@ -169,42 +166,38 @@ void add_mesh_module_candidate(const std::string& path) {
   module_search().add(path);
 }
 
-std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh) {
-  const LoadedModule& module = loaded_module();
-  if (!module.read) return module.error;
-  ReadResult result{&mesh, {}};
-  const OpenplxMeshSink sink{
-      &result,
-      [](void* context, const float* vertices, size_t vertex_floats, const uint32_t* faces, size_t indices) {
-        TriangleMesh& out = *static_cast<ReadResult*>(context)->mesh;
-        out.vertices.assign(vertices, vertices + vertex_floats);
-        out.faces.assign(faces, faces + indices);
-      },
-      [](void* context, const char* message, size_t size) {
-        static_cast<ReadResult*>(context)->problem.assign(message, size);
-      },
-  };
+std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh, const MeshReading& how) {
   mesh = TriangleMesh{};
-  module.read(path.c_str(), &sink);
-  return result.problem;
+  // The files are checked here, before the reader opens any; the module checks what assimp opens again.
+  if (std::string problem = mesh_input_file_problem(path); !problem.empty()) return "it " + problem;
+  if (std::string problem = mesh_references_problem(path); !problem.empty()) return problem;
+  const LoadedModule& module = loaded_module();  // loaded here, before the child is forked
+  if (!module.read) return module.error;
+  return how.isolated ? read_mesh_in_child(module.read, path, mesh, how.limits)
+                      : read_mesh_in_process(module.read, path, mesh);
 }
 
+// Each triangle with its own three vertices, as MuJoCo 2.2.2's STL reader gives it: that reader meets no
+// shared edge, so it never finds faces of inconsistent orientation, which the inline form (and OBJ) would
+// refuse. Mass and inertia come from the triangles alone, so they are the same.
 std::string vertex_text(const TriangleMesh& mesh) {
   std::string text;
-  text.reserve(mesh.vertices.size() * 10);
-  for (size_t k = 0; k < mesh.vertices.size(); ++k) {
-    if (k) text += ' ';
-    append_float(text, mesh.vertices[k]);
+  text.reserve(mesh.faces.size() * 30);
+  for (size_t k = 0; k < mesh.faces.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      if (k || c) text += ' ';
+      append_float(text, mesh.vertices[3 * mesh.faces[k] + c]);
+    }
   }
   return text;
 }
 
 std::string face_text(const TriangleMesh& mesh) {
   std::string text;
-  text.reserve(mesh.faces.size() * 6);
+  text.reserve(mesh.faces.size() * 8);
   for (size_t k = 0; k < mesh.faces.size(); ++k) {
     if (k) text += ' ';
-    text += std::to_string(mesh.faces[k]);
+    text += std::to_string(k);
   }
   return text;
 }

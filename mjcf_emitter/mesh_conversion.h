@@ -35,12 +35,27 @@ inline constexpr size_t kMaxStlTriangles = 200000;
 // asset_file_checks.h (a damaged binary STL is diagnosed there as such).
 bool converted_with_assimp(const std::string& path);
 
-// Reads the file at `path` with assimp into `mesh`; empty on success, else why it cannot be read (assimp's
-// message, "it holds no triangles", or why the reader module is missing). The mesh is not yet checked for
-// being a solid (asset_file_checks.h). assimp lives in a module loaded on the first call (mesh_module_abi.h),
-// found beside the executable (../lib/openplx2mjcf/), in the build, in the install prefix, or at a path
-// registered here first (a package that installs it elsewhere).
-std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh);
+// The limits of one mesh read (mesh_reader_process.h): past them the file is reported, not read.
+struct MeshReaderLimits {
+  unsigned seconds = 60;       // wall-clock time, and CPU time
+  uint64_t memory_mib = 4096;  // address space the reader may add to the process's
+};
+
+// How read_mesh_with_assimp reads: in a child process within `limits`, or in this process (only for the
+// fuzz target's second pass over a file a child read without failing).
+struct MeshReading {
+  bool isolated = true;
+  MeshReaderLimits limits;
+};
+
+// Reads the file at `path` with assimp into `mesh`; empty on success, else why it cannot be read: the file
+// or one it names must not be read (mesh_input_file.h, mesh_references.h), assimp's message, "it holds no
+// triangles", the reader crashed, took too long or needed too much memory (mesh_reader_process.h), or why
+// the reader module is missing. The mesh is not yet checked for being a solid (asset_file_checks.h). assimp
+// lives in a module loaded on the first call (mesh_module_abi.h), found beside the executable
+// (../lib/openplx2mjcf/), in the build, in the install prefix, or at a path registered here first (a package
+// that installs it elsewhere).
+std::string read_mesh_with_assimp(const std::string& path, TriangleMesh& mesh, const MeshReading& how = {});
 void add_mesh_module_candidate(const std::string& path);
 
 // The <up_axis> a COLLADA file declares ("X_UP", "Y_UP" or "Z_UP"), or "" when it is none or declares none
@@ -53,11 +68,13 @@ std::string collada_up_axis(const std::string& path);
 void turn_up_axis_onto_z(TriangleMesh& mesh, const std::string& up);
 
 // The inline MJCF attributes <mesh vertex="..." face="...">: shortest text that reads back to the same
-// floats.
+// floats, every triangle with its own three vertices, as MuJoCo 2.2.2 reads a binary STL (it checks face
+// orientation only on shared vertices, so a written STL would load where a shared inline mesh would not).
 std::string vertex_text(const TriangleMesh& mesh);
 std::string face_text(const TriangleMesh& mesh);
 
-// The mesh as a file MuJoCo 2.2.2 reads: binary STL when it has at most kMaxStlTriangles triangles, else OBJ.
+// The mesh as a file MuJoCo 2.2.2 reads: binary STL when it has at most kMaxStlTriangles triangles, else OBJ
+// (every triangle with its own vertices, as inline).
 // The bytes depend on the mesh only (no date, no name), so the same input writes the same file.
 const char* mesh_file_extension(const TriangleMesh& mesh);  // ".stl" or ".obj"
 std::string mesh_file_bytes(const TriangleMesh& mesh);

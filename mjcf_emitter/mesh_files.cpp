@@ -59,4 +59,20 @@ std::vector<MeshFile> move_meshes_to_files(Emitted& emitted, const std::string& 
   return files;
 }
 
+void move_mesh_folder(Element& document, std::vector<MeshFile>& files, const std::string& folder) {
+  std::map<std::string, std::string> moved;  // a file's path -> its path under `folder`
+  for (MeshFile& file : files) {
+    std::string to = folder + "/" + fs::path(file.path).filename().string();
+    moved.emplace(file.path, to);
+    file.path = std::move(to);
+  }
+  Element* assets = document.child("asset");
+  if (!assets) return;
+  for (auto& child : assets->children()) {
+    const std::string* file = child->get("file");
+    if (child->name() != "mesh" || !file) continue;
+    if (auto it = moved.find(*file); it != moved.end()) child->set("file", it->second);
+  }
+}
+
 }  // namespace openplx::mjcf

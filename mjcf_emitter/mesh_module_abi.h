@@ -25,3 +25,6 @@ typedef void (*OpenplxReadMeshFunction)(const char* path, const OpenplxMeshSink*
 
 // The entry point's name; a changed interface gets a new name, so a stale module cannot be misread.
 #define OPENPLX_READ_MESH_SYMBOL "openplx_read_mesh_v1"
+
+// The problem text of a read that ran out of memory: the caller, which set the limit, words the message.
+#define OPENPLX_MESH_OUT_OF_MEMORY "out of memory"

@@ -205,13 +205,8 @@ void Lowering::emit_tracks(Element& root) {
              " m on hinges: its flexibility, damping, bending range and tension initialisation are not "
              "mapped, and its wheels drive it by friction");
   }
-  if (!size_) return;
-  if (links == 0) {
-    drop_empty(root, "size");
-    return;
-  }
   const int n = static_cast<int>(links);  // at most kMaxLinks
-  size_->set("njmax", 500 + kRowsPerLink * n).set("nconmax", 100 + kContactsPerLink * n);
+  size_contact_buffers(root, kContactsPerLink * n, kRowsPerLink * n);
 }
 
 }  // namespace openplx::mjcf

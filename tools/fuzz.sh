@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds a libFuzzer target with clang (ASan+UBSan) and runs it.
 #   tools/fuzz.sh [SECONDS] [TARGET]   (default 600 s, lex_parse_fuzzer; or evaluate_fuzzer, urdf_fuzzer,
-#                                       manifest_fuzzer, runtime_input_fuzzer).
+#                                       manifest_fuzzer, runtime_input_fuzzer, mesh_fuzzer).
 # Crashes land in fuzz-out/TARGET/crashes; add fixed ones to tests/fuzz/regressions.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,12 +21,23 @@ out=fuzz-out/$target
 mkdir -p "$out/corpus" "$out/crashes"
 # Seeds: the real files, the reconstructed seed snippets and the saved regressions.
 dict=
+extra=()
 if [ "$target" = urdf_fuzzer ]; then
   find "$corpus_dir/urdf" tests/fuzz/regressions -name '*.urdf' -exec cp {} "$out/corpus/" \;
   dict=tests/fuzz/urdf.dict
 elif [ "$target" = manifest_fuzzer ]; then
   # The emitter's manifests and the hostile ones (empty names, laws short of actuators, another model's).
   find tests/golden/mjcf tests/fuzz/regressions -name '*.signals.json' -exec cp {} "$out/corpus/" \;
+elif [ "$target" = mesh_fuzzer ]; then
+  # A sound tetrahedron in each format, and the hostile files (tests/fuzz/fuzz_mesh.h lays out their
+  # neighbours). The reader's children may ask for more than the parent's RSS limit: that is theirs to fail
+  # on (a problem), not an out-of-memory report of the fuzzer's. Every input forks a reader: a small
+  # quarantine keeps the fuzzer small and its forks cheap (about twice the executions).
+  find tests/fuzz/mesh_seeds -type f ! -name README.md -exec cp {} "$out/corpus/" \;
+  find tests/fuzz/regressions -name 'mesh_*' -exec cp {} "$out/corpus/" \;
+  dict=tests/fuzz/mesh.dict
+  extra=(-malloc_limit_mb=1048576)
+  export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}quarantine_size_mb=16
 elif [ "$target" = runtime_input_fuzzer ]; then
   # Programs of input sets and steps (gears of 2^31 and 1e300, fractions of 5, NaN, huge velocities).
   find tests/fuzz/regressions -name '*.runtime' -exec cp {} "$out/corpus/" \;
@@ -38,4 +49,4 @@ fi
 LSAN_OPTIONS=suppressions="$PWD/tools/lsan.supp" \
   "build-asan/tests/fuzz/$target" "$out/corpus" ${dict:+-dict="$dict"} \
   -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
-  -artifact_prefix="$out/crashes/"
+  -artifact_prefix="$out/crashes/" ${extra[@]+"${extra[@]}"}

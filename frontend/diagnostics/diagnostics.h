@@ -57,9 +57,13 @@ class DiagnosticSink {
   std::map<std::tuple<uint16_t, FileId, uint32_t, std::string>, size_t> seen_;
 };
 
+// The errors a printout shows. Past them a pass may skip work only their text would show ("did you mean"
+// over every name of a file, for each of 40,000 unknown names), since no one reads it.
+inline constexpr size_t kMaxPrintedErrors = 100;
+
 // Prints every diagnostic in report order, at most `max_errors` errors (then one `too-many-errors` note).
 void print_diagnostics(std::ostream& out, const SourceManager& sources, const std::vector<Diagnostic>& diags,
-                       size_t max_errors = 100);
+                       size_t max_errors = kMaxPrintedErrors);
 void print_diagnostic(std::ostream& out, const SourceManager& sources, const Diagnostic& diag);
 
 }  // namespace openplx::frontend

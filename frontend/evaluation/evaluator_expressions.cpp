@@ -115,12 +115,14 @@ Evaluator::Entity Evaluator::eval_member_entity(const Expr& e, const Scope& scop
         Symbol symbol = program_.lookup_in(target.ns, e.text, &e.range);
         if (!symbol) {
           program_.load_all(target.ns);
-          std::vector<std::string> candidates;
-          for (const auto& [n, s] : target.ns->symbols) candidates.push_back(n);
-          for (const auto& [n, c] : target.ns->children) candidates.push_back(n);
           std::string message = "Unknown name " + target.ns->qualified + "." + std::string(e.text);
-          std::string near = Program::suggestion(e.text, candidates);
-          if (!near.empty()) message += "; did you mean `" + near + "`?";
+          if (sink_.error_count() < kMaxPrintedErrors) {  // a namespace can hold 40,000 names
+            std::vector<std::string> candidates;
+            for (const auto& [n, s] : target.ns->symbols) candidates.push_back(n);
+            for (const auto& [n, c] : target.ns->children) candidates.push_back(n);
+            std::string near = Program::suggestion(e.text, candidates);
+            if (!near.empty()) message += "; did you mean `" + near + "`?";
+          }
           add_note(sink_.report(DiagCode::UnknownName, e.range, message),
                    missing_member_note(target.ns->bundle, target.ns->qualified, e.text));
           entity.value = Value::error();

@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "frontend/bundles/bundles.h"
@@ -46,6 +47,12 @@ struct DocumentInfo {
   std::map<std::string, Namespace*, std::less<>> import_namespaces;  // `import @"x.openplx" as X`
   std::map<std::string, ModelInfo*, std::less<>> import_models;      // asset imports
   std::vector<Namespace*> imported_files;  // `import @"x.openplx"` without `as`: looked up like locals
+  // The names of the plain files among imported_files (outside bundles: what they declare never changes)
+  // -> the first of them declaring it, and where the others (bundle folders) sit: a name is found without
+  // asking 10,000 imports one by one. Built on the first lookup, again if imports were added since.
+  std::unordered_map<std::string_view, size_t> imported_names;
+  std::vector<size_t> imported_folders;
+  size_t imports_indexed = 0;
   // Type names this document's text resolved to a model without a word, by their parts joined with '\0': a
   // thousand `lN is Link` lines look the name up once (a name found never changes its meaning).
   std::unordered_map<std::string, ModelInfo*> model_names;
@@ -109,6 +116,12 @@ struct ModelInfo {
   enum class State : uint8_t { Unresolved, Resolving, Resolved, Failed } state = State::Unresolved;
   ModelInfo* base = nullptr;
   std::vector<ModelInfo*> traits;  // direct `with` traits
+  // The base linearization() takes (a resolved one), its depth and a jump further up (skew-binary jump
+  // pointers, Myers 1983): whether a model extends another is found in O(log depth) steps, not by listing
+  // a chain 40,000 deep. Traits extend only traits, so every model (not trait) it extends is on this chain.
+  const ModelInfo* chain_base = nullptr;
+  const ModelInfo* chain_jump = nullptr;  // nullptr: itself
+  uint32_t chain_depth = 0;
   // Self, own traits (with their parents), then the base's, deduplicated. Built on first use and kept: a
   // chain of 10,000 models each extending the previous holds the list of the models used, not one per
   // model (quadratic time and memory).
@@ -187,6 +200,10 @@ class Program {
   void load_all(Namespace* ns);
   // Documents parsed so far: the builtins, the user's file, its imports and the bundle files in use.
   size_t document_count() const { return documents_.size(); }
+  // Steps spent on names so far: namespaces asked for one, models compared for an inherited attribute and
+  // names offered to a "did you mean". tests/frontend/declaration_scaling_test.cpp holds it linear in the
+  // number of declarations, a count a quadratic walk cannot fake and no timer can flake.
+  size_t name_steps() const { return name_steps_; }
 
   SourceManager& sources() { return sources_; }
   DiagnosticSink& sink() { return sink_; }
@@ -225,6 +242,8 @@ class Program {
   // `name` (two parts or more) from the folders enclosing `doc`'s, innermost first, skipping the namespace
   // its first part already named (`tried`); quiet.
   Symbol lookup_in_enclosing(DocumentInfo* doc, const QualifiedName& name, Namespace* tried);
+  // `name` in the files `doc` imports without `as`, the first that has it, as lookup_in on each would.
+  Symbol lookup_imported(DocumentInfo* doc, std::string_view name);
   Namespace* bundle_root(std::string_view name);
 
   SourceManager& sources_;
@@ -238,8 +257,9 @@ class Program {
   std::deque<ModelInfo> models_;
   std::unordered_map<std::string, ModelInfo*> trait_extensions_;  // make_trait_extension's, by name
   // Models by the attributes they declare at their top level: an attribute declared again below an
-  // ancestor is found without a walk over every ancestor of every model.
-  std::unordered_map<std::string_view, std::vector<ModelInfo*>> declarers_;
+  // ancestor is found without a walk over every ancestor of every model. A set, so that a name 40,000
+  // unrelated models declare is checked against a model's few ancestors, not against all of them.
+  std::unordered_map<std::string_view, std::unordered_set<const ModelInfo*>> declarers_;
   std::deque<GlobalInfo> globals_;
   std::vector<OperatorInfo> operators_;
   // builtin_model's answers by name (natives make a Math.Vec3 for every vector they return).
@@ -257,6 +277,7 @@ class Program {
     const Member* member;
   };
   std::vector<AgxAnnotation> agx_annotations_;  // in the user's files, for report_agx_annotations
+  size_t name_steps_ = 0;
 };
 
 }  // namespace openplx::frontend

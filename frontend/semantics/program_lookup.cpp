@@ -13,6 +13,7 @@
 namespace openplx::frontend {
 
 Symbol Program::lookup_in(Namespace* ns, std::string_view name, const SourceRange* where) {
+  ++name_steps_;
   if (!ns->legacy) {
     load_namespace(ns);
     auto it = ns->symbols.find(name);
@@ -45,9 +46,7 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
   if (auto it = doc->import_namespaces.find(name); it != doc->import_namespaces.end()) {
     return Symbol{nullptr, nullptr, it->second};
   }
-  for (Namespace* imported : doc->imported_files) {
-    if (Symbol s = lookup_in(imported, name)) return s;
-  }
+  if (Symbol s = lookup_imported(doc, name)) return s;
   // The folders enclosing the file's, innermost first: bundle releases name a model of a parent folder
   // without a word (Sensors/Optics/Traits/RayEmitter.openplx: `RaySource` of Sensors/Optics).
   for (Namespace* outer = doc->ns->parent; outer && outer->parent; outer = outer->parent) {
@@ -81,19 +80,53 @@ Symbol Program::lookup(DocumentInfo* doc, std::string_view name, SourceRange whe
   }
   if (report) {
     std::string message = "Unknown name " + std::string(name);
-    std::vector<std::string> candidates = names_visible_from(doc);
-    if (extra) {
-      std::vector<std::string> more = extra();
-      candidates.insert(candidates.end(), more.begin(), more.end());
+    const bool shown = sink_.error_count() < kMaxPrintedErrors;  // else its suggestion and notes go unread
+    if (shown) {
+      std::vector<std::string> candidates = names_visible_from(doc);
+      if (extra) {
+        std::vector<std::string> more = extra();
+        candidates.insert(candidates.end(), more.begin(), more.end());
+      }
+      name_steps_ += candidates.size();
+      std::string near = suggestion(name, candidates);
+      if (!near.empty()) message += "; did you mean `" + near + "`?";
+    } else {
+      load_all(doc->ns);  // as names_visible_from would: the same files parsed either way
     }
-    std::string near = suggestion(name, candidates);
-    if (!near.empty()) message += "; did you mean `" + near + "`?";
     Diagnostic& d = sink_.report(DiagCode::UnknownName, where, message);
-    add_note(d, newer_bundle_note(name, bundles_));
-    if (!doc->bundle && doc->ns && doc->ns->qualified.empty())
-      add_note(d, sibling_bundle_note(sources_.file(doc->doc.file).path(), name));
+    if (shown) add_note(d, newer_bundle_note(name, bundles_));
+    if (shown && !doc->bundle && doc->ns && doc->ns->qualified.empty())
+      add_note(d, sibling_bundle_note(sources_.file(doc->doc.file).path(), name));  // lists a folder
   }
   return {};
+}
+
+Symbol Program::lookup_imported(DocumentInfo* doc, std::string_view name) {
+  std::vector<Namespace*>& files = doc->imported_files;
+  if (doc->imports_indexed != files.size()) {
+    doc->imported_names.clear();
+    doc->imported_folders.clear();
+    for (size_t i = 0; i < files.size(); ++i) {
+      const Namespace* ns = files[i];
+      // lookup_in on such a file reads only its symbols (no folder, children, host names or renames).
+      const bool plain = ns->loaded && ns->dir.empty() && !ns->bundle && !ns->legacy &&
+                         ns->qualified.empty() && ns->children.empty() && ns->lazy_names.empty();
+      if (!plain) {
+        doc->imported_folders.push_back(i);
+        continue;
+      }
+      for (const auto& [declared, symbol] : ns->symbols) doc->imported_names.emplace(declared, i);
+    }
+    doc->imports_indexed = files.size();
+  }
+  auto found = doc->imported_names.find(name);
+  const size_t first = found == doc->imported_names.end() ? files.size() : found->second;
+  for (size_t i : doc->imported_folders) {
+    if (i > first) break;
+    if (Symbol s = lookup_in(files[i], name)) return s;
+  }
+  if (first == files.size()) return {};
+  return files[first]->symbols.find(name)->second;
 }
 
 Symbol Program::host_declared(Namespace* ns, std::string_view name, const BundleConfig* release) {
@@ -147,13 +180,16 @@ Symbol Program::lookup_qualified(DocumentInfo* doc, const QualifiedName& name, b
     }
     if (!s && report) {
       load_all(ns);
-      std::vector<std::string> candidates;
-      for (const auto& [n, sym] : ns->symbols) candidates.push_back(n);
-      for (const auto& [n, child] : ns->children) candidates.push_back(n);
       std::string message = "Unknown name " + to_string(name) + ": no `" + std::string(name.parts[i].text) +
                             "` in " + (ns->qualified.empty() ? ns->name : ns->qualified);
-      std::string near = suggestion(name.parts[i].text, candidates);
-      if (!near.empty()) message += "; did you mean `" + near + "`?";
+      if (sink_.error_count() < kMaxPrintedErrors) {
+        std::vector<std::string> candidates;
+        for (const auto& [n, sym] : ns->symbols) candidates.push_back(n);
+        for (const auto& [n, child] : ns->children) candidates.push_back(n);
+        name_steps_ += candidates.size();
+        std::string near = suggestion(name.parts[i].text, candidates);
+        if (!near.empty()) message += "; did you mean `" + near + "`?";
+      }
       Diagnostic& d = sink_.report(DiagCode::UnknownName, name.parts[i].range, message);
       add_note(d, missing_member_note(ns->bundle, ns->qualified, name.parts[i].text));
     }

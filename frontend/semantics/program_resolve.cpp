@@ -45,6 +45,30 @@ std::vector<ModelInfo*> linearize_model(const ModelInfo* model) {
   return out;
 }
 
+const ModelInfo* jump_of(const ModelInfo* m) {
+  return m->chain_jump ? m->chain_jump : m;
+}
+
+// Links `model` below the base linearize_model() would take now.
+void link_chain(ModelInfo* model) {
+  const ModelInfo* base = model->base;
+  if (!base || base->state != ModelInfo::State::Resolved) return;
+  const ModelInfo* jump = jump_of(base);
+  model->chain_base = base;
+  model->chain_depth = base->chain_depth + 1;
+  const bool even = base->chain_depth - jump->chain_depth == jump->chain_depth - jump_of(jump)->chain_depth;
+  model->chain_jump = even ? jump_of(jump) : base;
+}
+
+// Whether `ancestor` is on the base chain above `model`.
+bool on_chain_above(const ModelInfo* model, const ModelInfo* ancestor) {
+  const uint32_t depth = ancestor->chain_depth;
+  if (depth >= model->chain_depth) return false;
+  while (model->chain_depth > depth)
+    model = jump_of(model)->chain_depth >= depth ? jump_of(model) : model->chain_base;
+  return model == ancestor;
+}
+
 }  // namespace
 
 const std::vector<ModelInfo*>& ModelInfo::linearization() const {
@@ -252,6 +276,7 @@ bool Program::resolve(ModelInfo* model) {
   // Linearization: the model, its traits (each with its parent traits), then the base chain; built when
   // first asked for, from the traits and base resolved by now.
   model->linearize = ModelInfo::Linearize::Resolved;
+  link_chain(model);
 
   // Trait restrictions (spec §8): no shared ancestor between two traits of a model.
   for (size_t i = 0; i < model->traits.size(); ++i) {
@@ -296,15 +321,42 @@ bool Program::resolve(ModelInfo* model) {
   // can clash, and only then are the ancestors listed (never kept: see linearization()).
   std::vector<ModelInfo*> ancestors;
   std::unordered_set<const ModelInfo*> ancestor_set;
+  auto list_ancestors = [&] {
+    if (!ancestors.empty()) return;
+    ancestors = linearize_model(model);
+    name_steps_ += ancestors.size();
+  };
   auto inherited = [&](std::string_view name) {
     auto found = declarers_.find(name);
     if (found == declarers_.end()) return false;
-    if (ancestors.empty()) {
-      ancestors = linearize_model(model);
-      ancestor_set.insert(ancestors.begin() + 1, ancestors.end());
+    const std::unordered_set<const ModelInfo*>& declarers = found->second;
+    // Fewer declarers than bases: each is looked for on the base chain, unless one is a trait.
+    if (declarers.size() <= model->chain_depth) {
+      bool trait = false;
+      for (const ModelInfo* m : declarers) {
+        ++name_steps_;
+        trait = trait || m->is_trait;
+        if (!m->is_trait && on_chain_above(model, m)) {
+          list_ancestors();  // for the report, which names the declarer
+          return true;
+        }
+      }
+      if (!trait) return false;
     }
-    return std::any_of(found->second.begin(), found->second.end(),
-                       [&](const ModelInfo* m) { return ancestor_set.count(m) > 0; });
+    list_ancestors();
+    // Whichever side is smaller is walked: a name every model declares meets few ancestors, and a deep
+    // chain meets few declarers.
+    if (declarers.size() >= ancestors.size() - 1) {
+      return std::any_of(ancestors.begin() + 1, ancestors.end(), [&](const ModelInfo* m) {
+        ++name_steps_;
+        return declarers.count(m) > 0;
+      });
+    }
+    if (ancestor_set.empty()) ancestor_set.insert(ancestors.begin() + 1, ancestors.end());
+    return std::any_of(declarers.begin(), declarers.end(), [&](const ModelInfo* m) {
+      ++name_steps_;
+      return ancestor_set.count(m) > 0;
+    });
   };
   for (const Entry& e : model->entries) {
     if (e.kind != Entry::Kind::Declare || e.path.size() != 1 || !inherited(e.path[0])) continue;
@@ -328,8 +380,7 @@ bool Program::resolve(ModelInfo* model) {
   }
   for (const Entry& e : model->entries) {
     if (e.kind != Entry::Kind::Declare || e.path.size() != 1) continue;
-    std::vector<ModelInfo*>& declarers = declarers_[e.path[0]];
-    if (declarers.empty() || declarers.back() != model) declarers.push_back(model);
+    declarers_[e.path[0]].insert(model);
   }
   std::set<std::string_view> methods;
   for (const MethodInfo& method : model->methods) {

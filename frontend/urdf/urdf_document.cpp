@@ -259,6 +259,22 @@ std::optional<UrdfFinding> UrdfDocument::loop_finding() const {
   return std::nullopt;
 }
 
+// urdfdom refuses a <robot> without a name; MuJoCo's importer loads it. It is named after its file, said.
+bool UrdfDocument::name_a_nameless_robot() {
+  XMLElement* robot = doc_.FirstChildElement("robot");
+  const char* written = robot->Attribute("name");
+  if (written && *written) return false;
+  std::string name = std::filesystem::path(path_).stem().string();
+  if (name.empty()) name = "robot";
+  robot->SetAttribute("name", name.c_str());
+  findings_.push_back({false,
+                       offset_of(robot_),
+                       std::string("the <robot> has ") + (written ? "an empty name" : "no name") +
+                           " (URDF requires one); it was named `" + name + "` after its file",
+                       {}});
+  return true;
+}
+
 std::string UrdfDocument::lenient_text() {
   if (xacro_) {  // the rest would only be the template's placeholders, each an error
     const std::string what = std::string_view(xacro_->Name()).substr(0, 6) == "xacro:"
@@ -275,6 +291,7 @@ std::string UrdfDocument::lenient_text() {
   }
   bool changed = check_values();
   // The DOM itself (not the const index) is edited here.
+  changed = name_a_nameless_robot() || changed;
   for (XMLElement* j = doc_.FirstChildElement("robot")->FirstChildElement("joint"); j;
        j = j->NextSiblingElement("joint")) {
     XMLElement* limit = j->FirstChildElement("limit");

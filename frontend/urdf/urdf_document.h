@@ -57,6 +57,7 @@ class UrdfDocument {
   bool check_values();  // urdf_values.cpp; true when the DOM was rewritten
   void find_xacro();    // sets xacro_ and xacro_declared_
   std::string expand_command() const;
+  bool name_a_nameless_robot();  // true when the DOM was rewritten
 
   std::string path_;
   // An unexpanded xacro template: its first `<xacro:...>` element or `${...}`/`$(...)` attribute (a

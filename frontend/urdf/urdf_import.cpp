@@ -321,10 +321,24 @@ std::map<std::string, std::string> joint_attributes(const urdf::ModelInterface& 
   return attributes;
 }
 
-// Where each joint starts: at zero, or a mimic follower where its mimic puts it (offset + multiplier times
-// its leader's start), so that the coupling holds from the first step. Chains follow their leaders.
-// A follower starts at offset + multiplier * (its leader's start); a chain that loops back on itself stops
-// where it would repeat a joint, counted from the joint asked about.
+// Whether a joint's zero lies outside its range: MuJoCo's limit rows then throw it into range within a few
+// steps, which flings light links downstream (a Kinova Jaco's joint_2 and joint_3 exclude zero).
+bool zero_outside_range(const urdf::Joint& joint) {
+  const bool ranged = joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::PRISMATIC;
+  return ranged && joint.limits && joint.limits->lower < joint.limits->upper &&
+         (joint.limits->lower > 0 || joint.limits->upper < 0);
+}
+
+// Where a joint that follows no other starts: at zero, or at the middle of a range that excludes zero, where
+// ROS's joint_state_publisher puts it (what the robot's author saw in RViz).
+double leader_start(const urdf::Joint& joint) {
+  return zero_outside_range(joint) ? (joint.limits->lower + joint.limits->upper) / 2 : 0.0;
+}
+
+// Where each joint starts: at zero (or leader_start), or a mimic follower where its mimic puts it (offset +
+// multiplier times its leader's start), so that the coupling holds from the first step. Chains follow their
+// leaders. A follower starts at offset + multiplier * (its leader's start); a chain that loops back on itself
+// stops where it would repeat a joint, counted from the joint asked about.
 std::map<std::string, double> joint_starts(const urdf::ModelInterface& robot) {
   std::map<std::string, double> start;
   for (const auto& [name, joint] : robot.joints_) {
@@ -340,7 +354,7 @@ std::map<std::string, double> joint_starts(const urdf::ModelInterface& robot) {
         break;
       }
       if (!j->mimic) {
-        start[j->name] = 0;
+        start[j->name] = leader_start(*j);
         break;
       }
       if (!seen.insert(j->name).second) {
@@ -457,6 +471,16 @@ UrdfImport convert_urdf(const std::string& path, const std::string& urdf_text, c
       result.findings.push_back({false,
                                  doc.offset_of(UrdfDocument::child(element, "axis")),
                                  "joint `" + joint->name + "` has a zero axis; the x axis was used",
+                                 {}});
+    }
+    if (!joint->mimic && zero_outside_range(*joint)) {
+      result.findings.push_back({false,
+                                 doc.offset_of(UrdfDocument::child(element, "limit")),
+                                 "joint `" + joint->name + "`'s zero lies outside its limits [" +
+                                     num(joint->limits->lower) + ", " + num(joint->limits->upper) +
+                                     "]: it starts at their middle, " + num(leader_start(*joint)) +
+                                     ", as ROS's joint_state_publisher shows it (from zero, MuJoCo's limit "
+                                     "would throw it into range and fling the links below it)",
                                  {}});
     }
     const bool ranged = joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC;

@@ -1,7 +1,7 @@
 // Replays every saved fuzz input (crashes once found, now fixed) and the fuzz seeds through the fuzz body,
 // so a regression shows up in the normal test run and under the sanitizer pass: .urdf files through the URDF
-// body, .signals.json through the manifest body, .runtime through the runtime-input body, the rest through
-// the lexer, parser and evaluator.
+// body, .signals.json through the manifest body, .runtime through the runtime-input body, mesh_* files
+// through the mesh body, the rest through the lexer, parser and evaluator.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +11,7 @@
 
 #include "tests/fuzz/fuzz_evaluate.h"
 #include "tests/fuzz/fuzz_lex_parse.h"
+#include "tests/fuzz/fuzz_mesh.h"
 #include "tests/fuzz/fuzz_runtime.h"
 #include "tests/fuzz/fuzz_urdf.h"
 #include "tests/support/scratch_dir.h"
@@ -36,6 +37,8 @@ TEST(FuzzRegression, SavedInputsRunClean) {
       openplx::fuzz::manifest_one(bytes, data.size(), scratch.path());
     } else if (entry.path().extension() == ".runtime") {  // runtime_input_fuzzer's
       openplx::fuzz::runtime_input_one(bytes, data.size(), scratch.path());
+    } else if (name.starts_with("mesh_")) {  // mesh_fuzzer's: each a hostile file, so a problem
+      EXPECT_NE(openplx::fuzz::mesh_one(bytes, data.size(), scratch.path()), "") << name;
     } else {
       openplx::fuzz::lex_parse_one(bytes, data.size());
       openplx::fuzz::evaluate_one(bytes, data.size());
@@ -43,6 +46,25 @@ TEST(FuzzRegression, SavedInputsRunClean) {
     ++count;
   }
   EXPECT_GT(count, 0u);
+}
+
+// The mesh fuzzer's seeds are sound meshes: else the fuzzer would start from nothing but errors.
+TEST(FuzzRegression, MeshSeedsAreSound) {
+  const openplx::testing::ScratchDir scratch;
+  size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(OPENPLX_TEST_DATA_DIR) / "fuzz/mesh_seeds")) {
+    if (entry.path().filename() == "README.md") continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string data = text.str();
+    EXPECT_EQ(
+        openplx::fuzz::mesh_one(reinterpret_cast<const uint8_t*>(data.data()), data.size(), scratch.path()),
+        "")
+        << entry.path().filename();
+    ++count;
+  }
+  EXPECT_GE(count, 9u);
 }
 
 // The runtime bodies return early when their sample does not compile: then they would test nothing.

@@ -219,6 +219,9 @@ struct Model {
   std::pair<Eigen::Vector3d, Eigen::Vector3d> extents(const char* geom) const {
     const int g = mj_name2id(m, mjOBJ_GEOM, geom);
     EXPECT_GE(g, 0) << geom;
+    return extents(g);
+  }
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> extents(int g) const {
     const int mesh = m->geom_dataid[g];
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     const Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>> rotation(d->geom_xmat + 9 * g);
@@ -233,40 +236,49 @@ struct Model {
   }
 };
 
+// How often `part` occurs in `text`.
+size_t occurrences(const std::string& text, const std::string& part) {
+  size_t count = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
+  return count;
+}
+
 // A 100 x 200 x 300 box in millimetres at (10, 20, 30) mm: 0.1 x 0.2 x 0.3 m, 6 kg of water, its corner at
-// (0.01, 0.02, 0.03) m as written. <up_axis> is turned onto +Z as COLLADA defines it (Y_UP: (x, y, z) ->
-// (x, -z, y); X_UP: (x, y, z) -> (-y, -z, x)), with a warning at the mesh, since RViz and Gazebo show the
-// coordinates as written; --collada-ignore-up-axis takes them as written, still warned.
+// (0.01, 0.02, 0.03) m as written. Coordinates are taken as written by default, as RViz and Gazebo show
+// them, whatever the <up_axis>; --collada-up-axis turns it onto +Z as COLLADA defines it (Y_UP: (x, y, z) ->
+// (x, -z, y); X_UP: (x, y, z) -> (-y, -z, x)). A file whose <up_axis> is not Z_UP gets one note, however
+// many geometries name it (here a collision and a visual one).
 TEST(MeshConversion, ColladaUnitAndUpAxisAreHonoured) {
   const ScratchDir dir;
   using V = Eigen::Vector3d;
   struct Case {
     const char* up;
-    bool ignore;
+    bool turn;
     V lo, hi;
   };
   const V written_lo(0.01, 0.02, 0.03), written_hi(0.11, 0.22, 0.33);
   for (const Case& c :
-       {Case{"Z_UP", false, written_lo, written_hi},
-        Case{"Y_UP", false, V(0.01, -0.33, 0.02), V(0.11, -0.03, 0.22)},
-        Case{"X_UP", false, V(-0.22, -0.33, 0.01), V(-0.02, -0.03, 0.11)},
-        Case{"Y_UP", true, written_lo, written_hi}, Case{"X_UP", true, written_lo, written_hi}}) {
-    SCOPED_TRACE(std::string(c.up) + (c.ignore ? " ignored" : ""));
+       {Case{"Z_UP", false, written_lo, written_hi}, Case{"Z_UP", true, written_lo, written_hi},
+        Case{"Y_UP", true, V(0.01, -0.33, 0.02), V(0.11, -0.03, 0.22)},
+        Case{"X_UP", true, V(-0.22, -0.33, 0.01), V(-0.02, -0.03, 0.11)},
+        Case{"Y_UP", false, written_lo, written_hi}, Case{"X_UP", false, written_lo, written_hi}}) {
+    SCOPED_TRACE(std::string(c.up) + (c.turn ? " turned" : " as written"));
     write(dir / "box.dae", collada("0.001", c.up, {100, 200, 300}, {10, 20, 30}));
     write(dir / "scene.openplx", scene("box.dae"));
     std::vector<std::string> args{(dir / "scene.openplx").string(), "-o", (dir / "scene.xml").string(),
-                                  "--check"};
-    if (c.ignore) args.push_back("--collada-ignore-up-axis");
+                                  "--check", "--strict"};
+    if (c.turn) args.push_back("--collada-up-axis");
     const Conversion r = cli(args);
-    ASSERT_EQ(r.status, 0) << r.errors;
+    ASSERT_EQ(r.status, 0) << r.errors;  // a note, not a warning: --strict passes
     if (std::string(c.up) == "Z_UP") {
       EXPECT_EQ(r.errors, "");
     } else {
-      EXPECT_NE(r.errors.find(std::string("warning: mesh file ") + (dir / "box.dae").string()),
+      EXPECT_EQ(occurrences(r.errors, "declares <up_axis>"), 1u) << r.errors;
+      EXPECT_NE(r.errors.find(std::string("note: mesh file ") + (dir / "box.dae").string() +
+                              " declares <up_axis>" + c.up),
                 std::string::npos)
           << r.errors;
-      EXPECT_NE(r.errors.find(std::string("declares <up_axis>") + c.up), std::string::npos) << r.errors;
-      EXPECT_NE(r.errors.find(c.ignore ? "taken as written" : "turned so that its up axis is +Z"),
+      EXPECT_NE(r.errors.find(c.turn ? "turned so that its up axis is +Z" : "taken as written"),
                 std::string::npos)
           << r.errors;
     }
@@ -280,6 +292,61 @@ TEST(MeshConversion, ColladaUnitAndUpAxisAreHonoured) {
       EXPECT_LT((lo - c.lo).norm(), 1e-6) << geom << " " << lo.transpose();
       EXPECT_LT((hi - c.hi).norm(), 1e-6) << geom << " " << hi.transpose();
     }
+  }
+}
+
+// The box as a binary STL: two triangles per quad, outward.
+std::string box_stl(const Eigen::Vector3d& size) {
+  const std::vector<Eigen::Vector3d> c = corners(size, Eigen::Vector3d::Zero());
+  std::string bytes(80, '\0');
+  const uint32_t count = 12;
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& q : kQuads) {
+    for (const std::array<int, 3>& t : {std::array<int, 3>{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}) {
+      const float zero[3] = {0, 0, 0};
+      bytes.append(reinterpret_cast<const char*>(zero), sizeof(zero));
+      for (int k : t) {
+        const float p[3] = {float(c[k].x()), float(c[k].y()), float(c[k].z())};
+        bytes.append(reinterpret_cast<const char*>(p), sizeof(p));
+      }
+      bytes.append(2, '\0');
+    }
+  }
+  return bytes;
+}
+
+// A URDF robot drawn for RViz: its link's visual is a COLLADA box, its collision the same box as an STL.
+// Whatever the COLLADA file's <up_axis> (Z_UP, Y_UP, X_UP), the visual sits on its collision twin by default,
+// as RViz and Gazebo show it.
+TEST(MeshConversion, UrdfColladaVisualMatchesItsCollisionTwinByDefault) {
+  const ScratchDir dir;
+  write(dir / "box.stl", box_stl({0.1, 0.2, 0.3}));
+  write(dir / "robot.urdf", R"(<robot name="arm">
+  <link name="base"/>
+  <link name="box">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><origin xyz="0.5 0 0"/><geometry><mesh filename="box.dae"/></geometry></visual>
+    <collision><origin xyz="0.5 0 0"/><geometry><mesh filename="box.stl"/></geometry></collision>
+  </link>
+  <joint name="hinge" type="revolute"><parent link="base"/><child link="box"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+)");
+  for (const char* up : {"Z_UP", "Y_UP", "X_UP"}) {
+    SCOPED_TRACE(up);
+    write(dir / "box.dae", collada("1", up, {0.1, 0.2, 0.3}, {0, 0, 0}));
+    const Conversion r = cli({(dir / "robot.urdf").string(), "-o", (dir / "robot.xml").string(), "--check"});
+    ASSERT_EQ(r.status, 0) << r.errors;
+    EXPECT_EQ(occurrences(r.errors, "declares <up_axis>"), std::string(up) == "Z_UP" ? 0u : 1u) << r.errors;
+    const Model model(dir / "robot.xml");
+    if (!model.m) continue;
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes;
+    for (int g = 0; g < model.m->ngeom; ++g)
+      if (model.m->geom_type[g] == mjGEOM_MESH) boxes.push_back(model.extents(g));
+    ASSERT_EQ(boxes.size(), 2u);
+    EXPECT_LT((boxes[0].first - boxes[1].first).norm(), 1e-6) << boxes[0].first.transpose();
+    EXPECT_LT((boxes[0].second - boxes[1].second).norm(), 1e-6) << boxes[0].second.transpose();
+    EXPECT_LT((boxes[0].second - Eigen::Vector3d(0.6, 0.2, 0.3)).norm(), 1e-6) << boxes[0].second.transpose();
   }
 }
 

@@ -191,6 +191,31 @@ TEST(UrdfInputEdges, XacroTemplatesAskToBeExpandedFirst) {
       << err;
 }
 
+// A <robot> without a name (or with an empty one), which urdfdom refuses and MuJoCo's importer loads: it
+// loads, named after its file (a URDF given directly is the model `<name>_robot`), with a warning at the
+// <robot>; --strict makes that an error.
+TEST(UrdfInputEdges, NamelessRobotIsNamedAfterItsFile) {
+  const openplx::testing::ScratchDir dir;
+  std::string err;
+  for (const char* robot : {"<robot>", "<robot name=\"\">"}) {
+    SCOPED_TRACE(robot);
+    std::ofstream(dir / "wheel_cart.urdf")
+        << "<?xml version=\"1.0\"?>\n"
+        << robot
+        << "\n  <link name=\"base\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" "
+           "ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+           "</robot>\n";
+    const fs::path xml = dir / "wheel_cart.xml";
+    ASSERT_EQ(cli({(dir / "wheel_cart.urdf").string(), "-o", xml.string(), "--check"}, &err), 0) << err;
+    EXPECT_EQ(err.find((dir / "wheel_cart.urdf").string() + ":2:1: warning: the <robot> has "), 0u) << err;
+    EXPECT_NE(err.find("it was named `wheel_cart` after its file"), std::string::npos) << err;
+    EXPECT_NE(read(xml).find("<mujoco model=\"wheel_cart_robot\""), std::string::npos) << read(xml);
+    fs::remove(xml);
+    EXPECT_NE(cli({(dir / "wheel_cart.urdf").string(), "-o", xml.string(), "--strict"}, &err), 0) << err;
+    EXPECT_FALSE(fs::exists(xml));
+  }
+}
+
 // A robot whose meshes name `package://robot_pkg/...`, with a collision mesh on line 4 and a visual one on
 // line 5.
 std::string packaged_robot(const std::string& package) {
@@ -265,9 +290,9 @@ TEST(UrdfInputEdges, PackageFoundNowhereIsSaidWithWhereItWasLookedFor) {
   EXPECT_EQ(err.find("not found"), std::string::npos) << err;
 }
 
-// --check's findings about a URDF's parts are placed at the URDF element they concern, as the import's own
-// are. MuJoCo refuses a moving body lighter than mjMINVAL (1e-15 kg), which the conversion lets through:
-// its compiler names the body, and the error lands on its <link> (line 6), not on the generated document.
+// Findings about a URDF's parts are placed at the URDF element they concern, as the import's own are. MuJoCo
+// refuses a moving body lighter than mjMINVAL (1e-15 kg): the emitter applies its rule, and the error lands
+// on the <link> (line 6), not on the generated document.
 TEST(UrdfInputEdges, CheckFindingsAreAtTheUrdfElement) {
   const openplx::testing::ScratchDir dir;
   const fs::path urdf = dir / "tiny.urdf";
@@ -285,9 +310,10 @@ TEST(UrdfInputEdges, CheckFindingsAreAtTheUrdfElement) {
   std::string err;
   EXPECT_EQ(cli({urdf.string(), "-o", (dir / "tiny.xml").string(), "--check"}, &err),
             openplx::cli::kExitInputError);
-  EXPECT_NE(err.find(urdf.string() + ":6:3: error: MuJoCo rejects the emitted MJCF: Error: mass and inertia "
-                                     "of moving bodies must be larger than mjMINVAL"),
-            std::string::npos)
+  EXPECT_NE(
+      err.find(urdf.string() + ":6:3: error: `arm` moves but its mass (1e-20 kg with the bodies fixed to "
+                               "it) is below MuJoCo's smallest, 1e-15 kg"),
+      std::string::npos)
       << err;
   EXPECT_EQ(err.find(".urdf.openplx:"), std::string::npos) << err;
 }

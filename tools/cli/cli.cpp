@@ -70,20 +70,66 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
   return true;
 }
 
+bool write_mesh_files(const std::string& output, const std::vector<mjcf::MeshFile>& files,
+                      std::vector<std::filesystem::path>& written, std::string& error);
+void remove_written(const std::vector<std::filesystem::path>& written);
+
+// What --check loads, in the output's folder (so relative paths resolve as in the output): the MJCF, and
+// with -o FILE its converted meshes as the files written beside it, in a folder of the check's own so that
+// the output's are not touched before the check passes. Named for this process and call; removed, files
+// before their folder, when it goes away, whatever the check found.
+class CheckFiles {
+ public:
+  explicit CheckFiles(const std::filesystem::path& dir) {
+    static std::atomic<unsigned> counter{0};  // the pid keeps processes apart, this threads and calls
+    base_ = dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  }
+  ~CheckFiles() { remove_written(written_); }
+  CheckFiles(const CheckFiles&) = delete;
+  CheckFiles& operator=(const CheckFiles&) = delete;
+
+  std::string xml() const { return base_.string() + ".xml"; }
+
+  // `xml` is `document` printed; with mesh files, the document is printed again naming the check's copies,
+  // then named the output's again.
+  bool write(const std::string& xml, mjcf::Element& document, std::vector<mjcf::MeshFile>& meshes,
+             std::string& error) {
+    if (meshes.empty()) return write_xml(xml, error);
+    const std::string folder = std::filesystem::path(meshes.front().path).parent_path().generic_string();
+    mjcf::move_mesh_folder(document, meshes, base_.filename().string() + ".meshes");
+    const bool written =
+        write_mesh_files(this->xml(), meshes, written_, error) && write_xml(document.to_string(), error);
+    mjcf::move_mesh_folder(document, meshes, folder);
+    return written;
+  }
+
+ private:
+  bool write_xml(const std::string& text, std::string& error) {
+    if (!write_file_atomically(xml(), text, error)) {
+      error = xml() + ": " + error;
+      return false;
+    }
+    written_.emplace_back(xml());
+    return true;
+  }
+
+  std::filesystem::path base_;
+  std::vector<std::filesystem::path> written_;
+};
+
 // --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did, start with no
 // collision geometry overlapping, and run for --check-time seconds from its initial state without MuJoCo
-// finding it unstable. Findings land at the joint's or body's declaration, else at the root model's.
-void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOptions& emit_options,
+// finding it unstable. Findings land at the joint's or body's declaration, else at the root model's. What
+// is checked is what is written: `xml` (converted meshes inline), or with `mesh_files` the document naming
+// them as files.
+void check(const CliOptions& options, const std::string& xml, mjcf::Element& document,
+           std::vector<mjcf::MeshFile>& mesh_files, const mjcf::EmitOptions& emit_options,
            const snap::ResolvedSystem& system, const snap::SnapResult& assembled,
            const fe::Evaluation& evaluation, fe::DiagnosticSink& sink) {
   namespace fs = std::filesystem;
   // Beside the output (so relative mesh paths resolve), else in the temporary folder.
-  const fs::path dir =
-      emit_options.output_dir.empty() ? fs::temp_directory_path() : fs::path(emit_options.output_dir);
-  // The pid keeps processes apart, the counter threads and calls of one process.
-  static std::atomic<unsigned> counter{0};
-  const fs::path file =
-      dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".xml");
+  CheckFiles files(emit_options.output_dir.empty() ? fs::temp_directory_path()
+                                                   : fs::path(emit_options.output_dir));
   const fe::SourceFile& source = evaluation.program->sources().file(evaluation.document->doc.file);
   fe::SourceRange at_root{evaluation.document->doc.file, source.content_begin(), source.content_begin()};
   if (system.root >= 0 && system.nodes[static_cast<size_t>(system.root)].where.file != fe::kNoFile)
@@ -100,18 +146,15 @@ void check(const CliOptions& options, const std::string& xml, const mjcf::EmitOp
   }
   auto at = [&](const fe::SourceRange& where) { return where.file != fe::kNoFile ? where : at_root; };
   std::string error;
-  if (!write_file_atomically(file.string(), xml, error)) {
-    sink.report(fe::DiagCode::MjcfCheckFailed, at_root,
-                "--check cannot write " + file.string() + ": " + error);
+  if (!files.write(xml, document, mesh_files, error)) {
+    sink.report(fe::DiagCode::MjcfCheckFailed, at_root, "--check cannot write its files: " + error);
     return;
   }
   mjcf::CheckOptions check_options;
   check_options.simulate_time = options.check_time;
   check_options.emitted_timestep = options.timestep;
-  mjcf::CheckResult result = mjcf::check_mjcf(file.string(), system, assembled, options.prefix,
+  mjcf::CheckResult result = mjcf::check_mjcf(files.xml(), system, assembled, options.prefix,
                                               evaluation.evaluator->root_name(), check_options);
-  std::error_code ec;
-  fs::remove(file, ec);
   if (!result.loaded) {
     sink.report(fe::DiagCode::MjcfCheckFailed, at(result.load_error_where),
                 "MuJoCo rejects the emitted MJCF: " + result.load_error);
@@ -264,29 +307,30 @@ bool convert(const CliOptions& options, fe::SourceManager& sources, fe::Diagnost
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   emit_options.exclude_initial_overlaps = options.exclude_initial_overlaps;
   emit_options.urdf_exact_mesh_mass = options.urdf_exact_mesh_mass;
-  emit_options.collada_ignore_up_axis = options.collada_ignore_up_axis;
+  emit_options.collada_up_axis = options.collada_up_axis;
   if (to_file)
     emit_options.output_dir = fs::absolute(*options.output).parent_path().lexically_normal().generic_string();
   mjcf::Emitted emitted = mjcf::emit_mjcf(system, emit_options, sink);
   timer.lap("emit");
   if (sink.has_errors()) return true;
-  std::string xml = emitted.document.to_string();
-  timer.lap("print xml");
-  // --check reads converted meshes inline, as the emitter's drafts did: no mesh file exists before the
-  // output.
-  if (options.check) check(options, xml, emit_options, system, assembled, evaluation, sink);
-  if (!options.output) return true;  // without -o the model is only checked
-  if (options.pose) {
-    mjcf::place_model(emitted.document, *options.pose);
-    xml = emitted.document.to_string();
-  }
+  // What the MJCF reads, taken while converted meshes are inline: their sources are the files read.
   if (options.depfile) {
     converted.asset_inputs = files_the_mjcf_reads(emitted.document, emit_options.output_dir);
     for (const mjcf::ConvertedMesh& mesh : emitted.converted_meshes)
       converted.asset_inputs.push_back(fs::absolute(mesh.source).lexically_normal().string());
   }
-  if (to_file && !emitted.converted_meshes.empty()) {
+  // Written to a file, converted meshes go into files beside it, and --check loads those files: MuJoCo
+  // 2.2.2 can take a mesh from one form and not the other. --pose touches no asset, so the order is free.
+  if (to_file && !emitted.converted_meshes.empty())
     converted.mesh_files = mjcf::move_meshes_to_files(emitted, mjcf::mesh_folder_for(*options.output));
+  std::string xml = emitted.document.to_string();
+  timer.lap("print xml");
+  if (options.check)
+    check(options, xml, emitted.document, converted.mesh_files, emit_options, system, assembled, evaluation,
+          sink);
+  if (!options.output) return true;  // without -o the model is only checked
+  if (options.pose) {
+    mjcf::place_model(emitted.document, *options.pose);
     xml = emitted.document.to_string();
   }
   converted.xml = std::move(xml);
@@ -316,7 +360,7 @@ std::string usage() {
   return "usage: openplx2mjcf FILE [-o OUT|-] [--model NAME] [-B DIR]... [--prefix P] [--pose POSE]\n"
          "                    [--no-keyframe] [--timestep S] [--mujoco 2.2|3] [--no-default-bundles]\n"
          "                    [--strict] [--check] [--check-time T] [--exclude-initial-overlaps]\n"
-         "                    [--urdf-exact-mesh-mass] [--collada-ignore-up-axis] [--depfile DEP]\n"
+         "                    [--urdf-exact-mesh-mass] [--collada-up-axis] [--depfile DEP]\n"
          "                    [--dump=tokens|ast|values|snap]\n"
          "                    [--help] [--version] [--]\n"
          "\n"
@@ -353,8 +397,9 @@ std::string usage() {
          "                 at the start (<contact><exclude>), for parts meant to overlap\n"
          "  --urdf-exact-mesh-mass  a URDF link without <inertial> takes the exact volume of its collision\n"
          "                 meshes (default: MuJoCo's URDF importer's mass, its legacy mesh volumes)\n"
-         "  --collada-ignore-up-axis  take COLLADA mesh coordinates as written, as RViz and Gazebo show\n"
-         "                 them (default: a file's <up_axis> is turned onto +Z, as COLLADA defines)\n"
+         "  --collada-up-axis  turn a COLLADA mesh's <up_axis> onto +Z, as the COLLADA standard defines\n"
+         "                 (default, or --collada-ignore-up-axis: its coordinates as written, as RViz and\n"
+         "                 Gazebo show them; a note names each file whose <up_axis> is not Z_UP)\n"
          "  --depfile DEP  with -o OUT: write DEP, a Make-style dependency file naming every file read\n"
          "                 (the model, OpenPLX files and bundles, URDFs, meshes, textures), for build\n"
          "                 systems (CMake's openplx2mjcf_add_model uses it)\n"
@@ -415,8 +460,8 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
       options.check = true;
       continue;
     }
-    if (arg == "--collada-ignore-up-axis") {
-      options.collada_ignore_up_axis = true;
+    if (arg == "--collada-up-axis" || arg == "--collada-ignore-up-axis") {  // the last one given holds
+      options.collada_up_axis = arg == "--collada-up-axis";
       continue;
     }
     if (arg == "--urdf-exact-mesh-mass") {

@@ -25,7 +25,7 @@ struct CliOptions {
   bool check = false;                     // --check: load the MJCF in MuJoCo, compare with SNAP, simulate it
   double check_time = 1.0;                // --check-time T: how long --check simulates, s
   bool exclude_initial_overlaps = false;  // --exclude-initial-overlaps: <exclude> bodies overlapping at t = 0
-  bool collada_ignore_up_axis = false;    // --collada-ignore-up-axis: COLLADA coordinates as written
+  bool collada_up_axis = false;           // --collada-up-axis: COLLADA's <up_axis> turned onto +Z
   bool urdf_exact_mesh_mass = false;      // --urdf-exact-mesh-mass: exact mesh volumes for URDF links
   std::string prefix;                     // --prefix P: prepended to every MuJoCo name
   double timestep = 0.002;                // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
