@@ -2,6 +2,8 @@
 #include "mjcf_emitter/asset_file_checks.h"
 #include "mjcf_emitter/lowering.h"
 #include "mjcf_emitter/mesh_conversion.h"
+#include "mjcf_emitter/mesh_input_file.h"
+#include "mjcf_emitter/mesh_references.h"
 
 #include <cctype>
 #include <filesystem>
@@ -182,9 +184,16 @@ std::string Lowering::mesh_asset(const sn::Geometry& g) {
                       scale.str() + " is not finite and non-zero");
     return {};
   }
-  if (converted_with_assimp(g.file)) return converted_mesh_asset(g);
+  // MuJoCo's own readers open what they are given to the end, and its OBJ reader the material library the
+  // file names: a FIFO or a device there hangs the user's load (mesh_input_file.h, mesh_references.h).
+  // (A converted file is checked so once, where it is read.)
+  std::string problem = mesh_input_file_problem(g.file);
+  if (!problem.empty()) problem = "it " + problem;
+  if (problem.empty() && converted_with_assimp(g.file)) return converted_mesh_asset(g);
+  if (problem.empty()) problem = mesh_references_problem(g.file);
   // A file MuJoCo cannot make a mesh of fails the user's load (or crashes it).
-  if (const std::string problem = mesh_file_problem(g.file); !problem.empty()) {
+  if (problem.empty()) problem = mesh_file_problem(g.file);
+  if (!problem.empty()) {
     mesh_left_out(g, fe::DiagCode::MjcfBadAsset,
                   "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + problem);
     return {};

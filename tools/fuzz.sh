@@ -45,8 +45,9 @@ else
   find "$corpus_dir" tests/seed_snippets tests/fuzz/regressions -name '*.openplx' -exec cp {} "$out/corpus/" \;
   dict=tests/fuzz/openplx.dict
 fi
-# urdfdom leaks its half-built tree on the URDFs it rejects (tools/lsan.supp says more): not ours to report.
-LSAN_OPTIONS=suppressions="$PWD/tools/lsan.supp" \
+# urdfdom leaks its half-built tree on the URDFs it rejects, assimp parts of a scene (tools/lsan.supp says
+# more): not ours to report, nor to list after every input that leaks.
+LSAN_OPTIONS=suppressions="$PWD/tools/lsan.supp":print_suppressions=0 \
   "build-asan/tests/fuzz/$target" "$out/corpus" ${dict:+-dict="$dict"} \
   -max_total_time="$seconds" -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
   -artifact_prefix="$out/crashes/" ${extra[@]+"${extra[@]}"}

@@ -209,6 +209,20 @@ TEST(HostileMeshes, EveryFileAMeshNamesIsChecked) {
   expect_located_error(dir, "image.dae", "the image it names, fifo.bin, is a FIFO");
 }
 
+// An OBJ goes to MuJoCo untouched, whose reader opens the material library it names: a FIFO there hangs
+// MuJoCo's own load (reproduced with mujoco-compile), so it is refused as assimp's inputs are; an oversized
+// or device OBJ likewise.
+TEST(HostileMeshes, FilesMuJoCosOwnReaderOpensAreChecked) {
+  const ScratchDir dir;
+  make_fifo(dir / "fifo.mtl");
+  write(dir / "m.obj",
+        "mtllib fifo.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  expect_located_error(dir, "m.obj", "the material library it names, fifo.mtl, is a FIFO");
+  std::ofstream(dir / "huge.obj").close();
+  fs::resize_file(dir / "huge.obj", mj::kMaxMeshFileBytes + 1);
+  expect_located_error(dir, "huge.obj", "it is 268435457 bytes, more than the 256 MiB");
+}
+
 // The mesh itself: a large sparse PLY, and one named through a link to a device.
 TEST(HostileMeshes, TheMeshFileItselfIsChecked) {
   const ScratchDir dir;
