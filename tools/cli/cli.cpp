@@ -31,6 +31,7 @@
 #include "snap/snap.h"
 #include "snap/snap_dump.h"
 #include "tools/cli/atomic_file.h"
+#include "tools/cli/crash_cleanup.h"
 #include "tools/cli/depfile.h"
 #include "tools/cli/memory/conversion_memory.h"
 
@@ -84,7 +85,10 @@ class CheckFiles {
     static std::atomic<unsigned> counter{0};  // the pid keeps processes apart, this threads and calls
     base_ = dir / (".openplx2mjcf-check-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   }
-  ~CheckFiles() { remove_written(written_); }
+  ~CheckFiles() {
+    crash_cleanup_.reset();
+    remove_written(written_);
+  }
   CheckFiles(const CheckFiles&) = delete;
   CheckFiles& operator=(const CheckFiles&) = delete;
 
@@ -103,6 +107,9 @@ class CheckFiles {
     return written;
   }
 
+  // From here on a crash inside MuJoCo removes the files too.
+  void guard_against_crashes() { crash_cleanup_.emplace(written_); }
+
  private:
   bool write_xml(const std::string& text, std::string& error) {
     if (!write_file_atomically(xml(), text, error)) {
@@ -115,6 +122,7 @@ class CheckFiles {
 
   std::filesystem::path base_;
   std::vector<std::filesystem::path> written_;
+  std::optional<CrashCleanup> crash_cleanup_;
 };
 
 // --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did, start with no
@@ -150,6 +158,7 @@ void check(const CliOptions& options, const std::string& xml, mjcf::Element& doc
     sink.report(fe::DiagCode::MjcfCheckFailed, at_root, "--check cannot write its files: " + error);
     return;
   }
+  files.guard_against_crashes();
   mjcf::CheckOptions check_options;
   check_options.simulate_time = options.check_time;
   check_options.emitted_timestep = options.timestep;
