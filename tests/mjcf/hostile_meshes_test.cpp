@@ -20,6 +20,7 @@
 #include "mjcf_emitter/mesh_input_file.h"
 #include "mjcf_emitter/mesh_reader_process.h"
 #include "mjcf_emitter/mesh_references.h"
+#include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
@@ -119,19 +120,8 @@ std::string robot(const std::string& mesh, const char* role = "collision") {
 )";
 }
 
-struct Conversion {
-  int status = -1;
-  std::string out, errors;
-};
-
-Conversion cli(const std::vector<std::string>& args) {
-  std::ostringstream out, errors;
-  Conversion r;
-  r.status = openplx::cli::run(args, out, errors);
-  r.out = out.str();
-  r.errors = errors.str();
-  return r;
-}
+using openplx::testing::cli;
+using openplx::testing::Conversion;
 
 // Converts a robot whose collision mesh is `mesh` (already in `dir`), to a file and to stdout: exit 1, the
 // error at the <mesh> with `why`, and nothing written.

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
 
@@ -184,19 +185,8 @@ std::string scene(const std::string& file, const std::string& scale = "{1, 1, 1}
          file + "\"\n";
 }
 
-struct Conversion {
-  int status = -1;
-  std::string out, errors;
-};
-
-Conversion cli(const std::vector<std::string>& args) {
-  std::ostringstream out, errors;
-  Conversion r;
-  r.status = openplx::cli::run(args, out, errors);
-  r.out = out.str();
-  r.errors = errors.str();
-  return r;
-}
+using openplx::testing::cli;
+using openplx::testing::Conversion;
 
 struct Model {
   mjModel* m = nullptr;

@@ -17,6 +17,7 @@
 
 #include "mjcf_emitter/asset_file_checks.h"
 #include "mjcf_emitter/mesh_conversion.h"
+#include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/tetrahedron_stl.h"
 #include "tools/cli/cli.h"
@@ -274,19 +275,8 @@ std::string robot(const std::string& visual, const std::string& collision) {
          "</robot>\n";
 }
 
-struct Conversion {
-  int status = -1;
-  std::string out, errors;
-};
-
-Conversion cli(const std::vector<std::string>& args) {
-  std::ostringstream out, errors;
-  Conversion r;
-  r.status = openplx::cli::run(args, out, errors);
-  r.out = out.str();
-  r.errors = errors.str();
-  return r;
-}
+using openplx::testing::cli;
+using openplx::testing::Conversion;
 
 // The names in `dir`, sorted.
 std::vector<std::string> listing(const fs::path& dir) {
