@@ -190,9 +190,16 @@ std::string Lowering::mesh_asset(const sn::Geometry& g) {
   std::string problem = mesh_input_file_problem(g.file);
   if (!problem.empty()) problem = "it " + problem;
   if (problem.empty() && converted_with_assimp(g.file)) return converted_mesh_asset(g);
-  if (problem.empty()) problem = mesh_references_problem(g.file);
-  // A file MuJoCo cannot make a mesh of fails the user's load (or crashes it).
-  if (problem.empty()) problem = mesh_file_problem(g.file);
+  // A file MuJoCo cannot make a mesh of fails the user's load (or crashes it). Read once per file, however
+  // many geometries name it.
+  if (problem.empty()) {
+    auto [checked, first] = untouched_mesh_problems_.try_emplace(g.file);
+    if (first) {
+      checked->second = mesh_references_problem(g.file);
+      if (checked->second.empty()) checked->second = mesh_file_problem(g.file);
+    }
+    problem = checked->second;
+  }
   if (!problem.empty()) {
     mesh_left_out(g, fe::DiagCode::MjcfBadAsset,
                   "mesh file " + g.file + " of `" + g.path + ".path` cannot be a MuJoCo mesh: " + problem);

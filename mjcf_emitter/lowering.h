@@ -324,8 +324,9 @@ class Lowering {
     std::string problem;
   };
   std::map<std::string, ReadMesh> read_meshes_;
-  std::map<std::string, std::string> converted_assets_;  // file and scale -> its <mesh> asset
-  std::vector<ConvertedMesh> converted_meshes_;          // handed to Emitted
+  std::map<std::string, std::string> untouched_mesh_problems_;  // files MuJoCo reads itself -> why not, or ""
+  std::map<std::string, std::string> converted_assets_;         // file and scale -> its <mesh> asset
+  std::vector<ConvertedMesh> converted_meshes_;                 // handed to Emitted
   Element* size_ = nullptr;  // <size>, filled in or dropped once tracks are made (contact_buffers.cpp)
   struct DriveEdge {
     int from;        // shaft

@@ -6,8 +6,8 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
-#include <sstream>
 
+#include "mjcf_emitter/attribute_numbers.h"
 #include "mjcf_emitter/lowering.h"
 
 namespace openplx::mjcf {
@@ -25,26 +25,19 @@ bool has_joint(const Element& body) {
   return false;
 }
 
-std::array<double, 3> read_three(const std::string* text) {
-  std::array<double, 3> v{};
-  if (!text) return v;
-  std::istringstream in(*text);
-  for (double& x : v) in >> x;
-  return v;
-}
-
 // Adds `body`'s inertial and those of the jointless bodies below it (its weld group).
 void add_weld_group(const Element& body, WeldSum& sum) {
   const Element* inertial = nullptr;
   for (const auto& c : body.children())
     if (c->name() == "inertial") inertial = c.get();
-  if (!inertial || !inertial->get("diaginertia")) {
+  const std::optional<Eigen::Vector3d> moments =
+      inertial ? attribute_vector(*inertial, "diaginertia") : std::nullopt;
+  if (!moments) {
     sum.known = false;  // geoms or a fullinertia (written only when its moments pass, bodies.cpp)
   } else {
-    const std::string* mass = inertial->get("mass");
-    sum.mass += mass ? std::stod(*mass) : 0.0;
-    const std::array<double, 3> m = read_three(inertial->get("diaginertia"));
-    for (int k = 0; k < 3; ++k) sum.moments[k] += m[k];
+    const std::vector<double> mass = attribute_numbers(*inertial, "mass");
+    sum.mass += mass.empty() ? 0.0 : mass[0];
+    for (int k = 0; k < 3; ++k) sum.moments[k] += (*moments)[k];
   }
   for (const auto& c : body.children())
     if (c->name() == "body" && !has_joint(*c)) add_weld_group(*c, sum);
@@ -69,7 +62,7 @@ void Lowering::enforce_moving_body_inertia() {
                        " kg; MuJoCo refuses such a body: give it a mass");
       continue;
     }
-    std::array<double, 3> own = read_three(inertial->get("diaginertia"));
+    Eigen::Vector3d own = *attribute_vector(*inertial, "diaginertia");
     std::string raised;
     for (int k = 0; k < 3; ++k) {
       if (sum.moments[k] >= mjMINVAL) continue;
@@ -77,7 +70,7 @@ void Lowering::enforce_moving_body_inertia() {
       own[k] += mjMINVAL - sum.moments[k];
       if (own[k] < mjMINVAL) own[k] = mjMINVAL;  // rounding of the sum
     }
-    inertial->set("diaginertia", numbers({own[0], own[1], own[2]}));
+    inertial->set("diaginertia", own);
     warn(n.where, "`" + n.path + "` moves but its principal moment of inertia " + raised +
                       " kg m^2 is below " + number(mjMINVAL) +
                       ", the smallest MuJoCo accepts for a moving body (it refuses the model); it was raised "
