@@ -58,6 +58,12 @@ SignalBinding binding(const json& j) {
   b.high = real(j.at("high"));
   b.reason = j.at("reason").get<std::string>();
   b.runtime = j.value("runtime", false);
+  if (j.contains("noise")) {
+    const json& n = j.at("noise");
+    b.noise.mean = reals(n.at("mean"));
+    b.noise.deviation = reals(n.at("deviation"));
+    if (n.contains("deviation_per_metre")) b.noise.deviation_per_metre = reals(n.at("deviation_per_metre"));
+  }
   return b;
 }
 
@@ -253,6 +259,30 @@ std::string binding_problem(const SignalBinding& b) {
   return "";
 }
 
+// Sensor noise: on a sensor's values only, each list one number for all of them or one per value, means
+// finite, deviations finite and not negative.
+std::string noise_problem(const SignalBinding& b) {
+  const SignalNoise& n = b.noise;
+  if (n.empty()) return "";
+  if (b.input || b.quantity != Quantity::SensorFields)
+    return "only a sensor's output (sensor_fields) has noise";
+  const size_t values = b.names.size();
+  for (const auto& [list, what] : {std::pair{&n.mean, "mean"},
+                                   {&n.deviation, "deviation"},
+                                   {&n.deviation_per_metre, "deviation_per_metre"}}) {
+    if (list == &n.deviation_per_metre && list->empty()) continue;  // optional: none
+    if (list->size() != 1 && list->size() != values) {
+      return std::string("its noise's ") + what + " holds " + std::to_string(list->size()) +
+             " numbers: one for every value, or one per value (" + std::to_string(values) + ")";
+    }
+    for (double v : *list) {
+      if (!std::isfinite(v)) return std::string("its noise's ") + what + " holds a number that is not finite";
+      if (list != &n.mean && v < 0) return std::string("its noise's ") + what + " holds a negative number";
+    }
+  }
+  return "";
+}
+
 std::string law_problem(const RuntimeLaw& l) {
   using Kind = RuntimeLaw::Kind;
   const size_t wanted = l.kind == Kind::TorqueConverter                           ? 2
@@ -331,8 +361,9 @@ Manifest parse_manifest(const std::string& text, const std::string& path) {
   if (!(m.timestep >= 0 && std::isfinite(m.timestep)))
     throw ManifestError(path + ": error: its timestep is not a positive number of seconds\n");
   for (const SignalBinding& b : m.signals) {
-    if (const std::string problem = binding_problem(b); !problem.empty())
-      throw ManifestError(path + ": error: signal `" + b.path + "`: " + problem + "\n");
+    std::string problem = binding_problem(b);
+    if (problem.empty()) problem = noise_problem(b);
+    if (!problem.empty()) throw ManifestError(path + ": error: signal `" + b.path + "`: " + problem + "\n");
   }
   for (const RuntimeLaw& l : m.laws) {
     if (const std::string problem = law_problem(l); !problem.empty())

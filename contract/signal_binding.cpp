@@ -420,7 +420,8 @@ size_t numbers_room(const std::vector<double>& values) {
 size_t room_for(const SignalBinding& b) {
   return kFixedRoom + 4 * kNumberChars + string_room(b.path) + string_room(b.type) + string_room(b.unit) +
          strings_room(b.names) + string_room(b.sensor) + numbers_room(b.initial_vector) +
-         string_room(b.reason);
+         string_room(b.reason) + numbers_room(b.noise.mean) + numbers_room(b.noise.deviation) +
+         numbers_room(b.noise.deviation_per_metre);
 }
 
 size_t room_for(const RuntimeLaw& law) {
@@ -447,7 +448,15 @@ void write_binding(Cursor& out, const SignalBinding& b) {
   out.text(", \"sign\": ").number(b.sign).text(", \"initial\": ").number(b.initial);
   out.text(", \"initial_vector\": ").numbers(b.initial_vector);
   out.text(", \"low\": ").number(b.low).text(", \"high\": ").number(b.high);
-  out.text(", \"reason\": ").string(b.reason).text(", \"runtime\": ").boolean(b.runtime).text("}");
+  out.text(", \"reason\": ").string(b.reason).text(", \"runtime\": ").boolean(b.runtime);
+  if (!b.noise.empty()) {  // only outputs with sensor noise: every other line stays as it was
+    out.text(", \"noise\": {\"mean\": ").numbers(b.noise.mean);
+    out.text(", \"deviation\": ").numbers(b.noise.deviation);
+    if (!b.noise.deviation_per_metre.empty())
+      out.text(", \"deviation_per_metre\": ").numbers(b.noise.deviation_per_metre);
+    out.text("}");
+  }
+  out.text("}");
 }
 
 void write_law(Cursor& out, const RuntimeLaw& law) {

@@ -129,6 +129,15 @@ enum class Quantity {
   Constant,      // no MuJoCo element: the value is `initial` (e.g. an always-enabled tree mate)
 };
 
+// Gaussian noise the runtime adds to an output's values when it reads them (sensor distortions: a lidar's
+// distance noise, an IMU axis's signal noise). Each list holds one number for every value, or one per value.
+// A value x read becomes x + N(mean, deviation + deviation_per_metre * |x|); a rangefinder's miss (-1) stays
+// -1 and a noisy distance stays >= 0. Empty lists: no noise.
+struct SignalNoise {
+  std::vector<double> mean, deviation, deviation_per_metre;
+  bool empty() const { return mean.empty() && deviation.empty() && deviation_per_metre.empty(); }
+};
+
 struct SignalBinding {
   std::string path;  // OpenPLX path relative to the root model, e.g. "pendulum.motor.torque_output"
   bool input = false;
@@ -149,6 +158,7 @@ struct SignalBinding {
   std::string reason;                  // None: why nothing maps
   bool runtime = false;  // its behaviour needs the runtime: a law it computes each step (RuntimeLaw) or an
                          // engagement ramp; the MJCF alone carries the closest static behaviour
+  SignalNoise noise;     // SensorFields outputs: sensor noise the runtime applies (written only when given)
 };
 
 // A gearbox's ratio in gear `gear` (Quantity::GearSelect): forward gears n > 0, reverse gears -n (negated),
@@ -253,7 +263,8 @@ std::string_view to_string(Quantity quantity);
 // The manifest (documented field by field, with every quantity, in docs/signals.schema.json): {
 // "format_version", "model", "prefix", [the ManifestModel facts], "signals": [{"path", "direction", "type",
 // "value", "unit", "enabled", "quantity", "object", "names", "sensor", "sign", "initial", "initial_vector",
-// "low", "high", "reason", "runtime"}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y",
+// "low", "high", "reason", "runtime", and "noise" {"mean", "deviation", "deviation_per_metre" (when any)}
+// when the output has sensor noise}], "laws": [{"kind", "path", "actuators", "curve_x", "curve_y",
 // "curve2_x", "curve2_y", "parameter"}]} with keys in that order, one signal or law per line, deterministic.
 // Numbers JSON cannot hold are the strings "inf", "-inf", "nan". `prefix` is the one every MuJoCo name
 // carries.

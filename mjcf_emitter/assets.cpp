@@ -43,15 +43,17 @@ std::string dropped_map_effect(const sn::VisualMaterial& m, const std::string& m
 
 }  // namespace
 
-// Visuals materials as MJCF materials: base colour tint -> rgba, 1 - roughness -> shininess (MuJoCo's is
-// a glossiness), metallic -> reflectance, a base colour image -> a 2-D <texture> the material repeats
-// scale_u x scale_v times.
+// Visuals materials as MJCF materials: base colour tint -> rgba, times the Transparency's alpha (MuJoCo
+// draws a geom whose alpha is below 1 see-through), 1 - roughness -> shininess (MuJoCo's is a glossiness),
+// metallic -> reflectance, a base colour image -> a 2-D <texture> the material repeats scale_u x scale_v
+// times.
 void Lowering::emit_visual_materials() {
   for (const sn::VisualMaterial& m : system_.visual_materials) {
     Element& material = assets_->add("material");
     material.set("name", name(m.path));
-    if (m.tint) {
-      const Eigen::Vector4d& c = *m.tint;
+    if (m.tint || m.alpha) {
+      Eigen::Vector4d c = m.tint.value_or(Eigen::Vector4d::Ones());
+      c[3] = std::clamp(c[3] * m.alpha.value_or(1.0), 0.0, 1.0);
       material.set("rgba", number(c[0]) + " " + number(c[1]) + " " + number(c[2]) + " " + number(c[3]));
     }
     if (m.roughness && use_factor(m, "roughness_map", m.roughness_written))

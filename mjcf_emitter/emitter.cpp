@@ -3,6 +3,7 @@
 #include "mjcf_emitter/emitter.h"
 
 #include "mjcf_emitter/lowering.h"
+#include "mjcf_emitter/mujoco3_collision.h"
 #include "mjcf_emitter/viewer_defaults.h"
 
 namespace openplx::mjcf {
@@ -98,9 +99,11 @@ Emitted Lowering::run() {
   finish_with_draft(root);
   enforce_moving_body_inertia();
   exclude_initial_overlaps(root);
+  // After the drafts: they compile in MuJoCo 2.2.2, which rejects these 3.x settings.
+  if (options_.mujoco == EmitOptions::MuJoCo::V3) add_mujoco3_collision_settings(root);
   // A light, framing and colours for viewers (viewer_defaults.h); after the draft, whose <statistic> it
   // completes.
-  add_viewer_defaults(root, options_.prefix);
+  add_viewer_defaults(root, options_.prefix, options_.light);
   out.converted_meshes = std::move(converted_meshes_);
   return out;
 }

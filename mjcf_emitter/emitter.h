@@ -25,14 +25,18 @@ struct EmitOptions {
   std::string prefix;       // prepended to every MuJoCo name (--prefix)
   std::string output_dir;   // mesh files are written relative to it; empty: absolute paths
   double timestep = 0.002;  // <option timestep> (--timestep): OpenPLX has no time-step setting
-  // The MuJoCo the numbers are for (--mujoco): the file loads in both, but soft welds' solref and
-  // torquescale follow laws that changed in 3.0 (docs/mapping.md "MuJoCo versions").
+  // The MuJoCo the file is for (--mujoco): soft welds' solref and torquescale follow laws that changed in
+  // 3.0, and V3 adds a collision flag only 3.x loads (mujoco3_collision.h; docs/mapping.md "MuJoCo
+  // versions").
   enum class MuJoCo { V2, V3 };
   MuJoCo mujoco = MuJoCo::V2;
   // The "initial" keyframe (initial controls and free bodies' velocities). A keyframe must cover the whole
   // model, so a file <include>d into a bigger scene goes without (--no-keyframe); a SignalBridge sets the
   // initial controls instead.
   bool keyframe = true;
+  // A directional light when the model has none (viewer_defaults.h). A file made for a bigger scene goes
+  // without: every included file's light adds up, and the scene brings its own (--lights).
+  bool light = true;
   // Emitted::manifest_json filled in; the converter leaves it empty and writes the manifest to its file in
   // pieces from `signals` and `laws` (write_manifest_json), never holding the whole text.
   bool manifest_text = true;

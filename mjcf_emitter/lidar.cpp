@@ -1,13 +1,19 @@
 // Lowering pass, lidars: one MuJoCo rangefinder per ray, on a site at the lidar's connector turned so that
 // its z axis is the ray (a rangefinder measures along its site's +z to the nearest geom of another body, -1
-// when nothing is hit). A LidarOutput reads them all as one vector.
+// when nothing is hit). A LidarOutput reads them all as one vector; its distance noise is the runtime's.
+#include <algorithm>
+
 #include "mjcf_emitter/lowering.h"
 
 namespace openplx::mjcf {
 
 namespace {
 constexpr size_t kMaxRays = 4096;  // each ray is a site and a sensor: a dense scan would swamp the model
+
+bool noisy(const sn::Lidar& lidar) {
+  return lidar.noise_deviation != 0 || lidar.noise_mean != 0 || lidar.noise_slope != 0;
 }
+}  // namespace
 
 void Lowering::emit_lidars() {
   for (size_t k = 0; k < system_.lidars.size(); ++k) {
@@ -22,12 +28,21 @@ void Lowering::emit_lidars() {
                             "`'s ray source gives no ray pattern MuJoCo can read; it has one "
                             "ray, along its connector's normal");
     }
-    if (lidar.noise_deviation > 0 || lidar.noise_mean != 0 || lidar.noise_slope != 0) {
+    if (noisy(lidar)) {
+      warn(lidar.where, "lidar `" + lidar.path + "`'s distance noise (mean " + number(lidar.noise_mean) +
+                            " m, deviation " + number(lidar.noise_deviation) + " m + " +
+                            number(lidar.noise_slope) +
+                            " per m of distance) is applied by the runtime (Simulation, SignalBridge, "
+                            "openplx-sim) when its "
+                            "output is read; MuJoCo does not apply it, so the bare MJCF's ranges are exact "
+                            "(its rangefinders "
+                            "record the deviation as `noise`)");
+    }
+    if (lidar.noise_deviation < 0 || lidar.noise_slope < 0) {
       warn(lidar.where,
-           "lidar `" + lidar.path + "`'s distance noise (mean " + number(lidar.noise_mean) +
-               " m, deviation " + number(lidar.noise_deviation) + " m + " + number(lidar.noise_slope) +
-               " per m) is recorded on its rangefinders as MuJoCo's `noise` (the deviation), which "
-               "MuJoCo does not apply: the ranges are exact");
+           "lidar `" + lidar.path +
+               "`'s distance noise has a negative standard_deviation or standard_deviation_slope; "
+               "the runtime takes it as 0");
     }
     size_t rays = lidar.rays.size();
     if (rays > kMaxRays) {
@@ -62,6 +77,12 @@ void Lowering::bind_lidar(SignalBinding& b, int k) {
   b.object = MjObject::Sensor;
   b.names = it->second;
   b.initial_vector.assign(b.names.size(), 0.0);  // each rangefinder's single value
+  const sn::Lidar& lidar = system_.lidars[k];
+  if (noisy(lidar)) {  // one distance noise for every ray; the runtime applies it
+    b.noise = {
+        {lidar.noise_mean}, {std::max(0.0, lidar.noise_deviation)}, {std::max(0.0, lidar.noise_slope)}};
+    b.runtime = true;
+  }
 }
 
 }  // namespace openplx::mjcf

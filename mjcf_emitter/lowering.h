@@ -232,6 +232,7 @@ class Lowering {
   void bind_signals(Element& root, std::vector<SignalBinding>& out);
   void bind(const sn::Signal& s, SignalBinding& b);
   void bind_imu(const sn::Signal& s, SignalBinding& b);
+  void add_imu_noise(const sn::Signal& s, SignalBinding& b);
   void bind_composite(const sn::Signal& s, const std::vector<SignalBinding>& parts, SignalBinding& b);
   void bind_interaction(SignalBinding& b, std::string_view stem, int k);
   void bind_enabled(SignalBinding& b, int k);
@@ -349,6 +350,7 @@ class Lowering {
   std::map<int, std::string> springs_;                          // spring interaction -> its actuator
   std::map<int, std::string> range_joints_;                     // by interaction
   std::map<std::string, int> ranges_on_joint_;                  // how many of those each joint has
+  std::set<std::string> imu_distortions_said_;                  // IMU distortions warned about
   std::set<std::string> imu_sensors_;                           // MuJoCo sensors made for IMU fields
   SignalClasses signal_classes_;                                // keyed by the system's type names
   std::map<int, std::string> distance_tendons_;                 // DistanceRange/Motor -> its tendon

@@ -100,7 +100,27 @@ void Lowering::bind_imu(const sn::Signal& s, SignalBinding& b) {
   }
   b.quantity = Quantity::SensorFields;
   b.object = MjObject::Sensor;
-  return;
+  add_imu_noise(s, b);
+}
+
+// The fields' Gaussian signal noise, one mean and deviation per field, for the runtime to apply (MuJoCo 2.2.2
+// applies no sensor noise); distortions without a counterpart are warned about once per sensor.
+void Lowering::add_imu_noise(const sn::Signal& s, SignalBinding& b) {
+  bool noisy = false;
+  for (const sn::Signal::SensorField& f : s.sensor_fields) {
+    noisy = noisy || f.noise_mean != 0 || f.noise_deviation != 0;
+    for (const sn::Signal::SensorField::Distortion& d : f.unapplied) {
+      if (!imu_distortions_said_.insert(d.path).second) continue;
+      warn(d.where, "`" + d.path + "` (" + d.type + ") has no counterpart in the runtime or MuJoCo: `" +
+                        f.sensor_path + "`'s readings carry its Gaussian noise only");
+    }
+  }
+  if (!noisy) return;
+  for (const sn::Signal::SensorField& f : s.sensor_fields) {
+    b.noise.mean.push_back(f.noise_mean);
+    b.noise.deviation.push_back(f.noise_deviation);
+  }
+  b.runtime = true;  // the MJCF alone reads the sensors without noise
 }
 
 // A RobotInput or RobotOutput: its parts' paths in order. An input's parts must be scalar inputs (one value

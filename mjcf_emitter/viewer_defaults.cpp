@@ -166,11 +166,11 @@ void colour_plain_geoms(Element& mujoco, const Element& world, const std::string
 
 }  // namespace
 
-void add_viewer_defaults(Element& mujoco, const std::string& prefix) {
+void add_viewer_defaults(Element& mujoco, const std::string& prefix, bool light) {
   Element* world = mujoco.child("worldbody");
   if (!world) return;
   frame_the_machine(mujoco, *world);
-  if (!has_light(*world)) add_light(mujoco, *world, prefix);
+  if (light && !has_light(*world)) add_light(mujoco, *world, prefix);
   colour_plain_geoms(mujoco, *world, prefix);
 }
 

@@ -78,7 +78,7 @@ std::string list(const std::vector<std::string>& items, size_t most) {
 }  // namespace
 
 SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, mjData* data,
-                                  const std::string& prefix) {
+                                  const std::string& prefix, const SensorNoiseOptions& noise) {
   if (!model || !data) throw LoadError(manifest + ": error: a bridge needs a model and its data\n");
   install_mujoco_handlers();
   mjcf::Manifest read;
@@ -143,6 +143,7 @@ SignalBridge SignalBridge::attach(const std::string& manifest, mjModel* model, m
   state->root = read.model;
   state->source = manifest;
   state->prefix = used_prefix;
+  state->noise = noise;
   state->emitted_timestep = read.timestep;
   // A scene stepping at another time step (its own <option>, or one read after the included file's) runs the
   // emitter's stability caps outside the range they were set for; a model without any (the manifest says
@@ -212,7 +213,7 @@ Output SignalBridge::output(std::string_view name) {
   const int index = state_->find(name, false);
   state_->request_output(index);
   const ResolvedSignal& s = state_->signals[static_cast<size_t>(index)];
-  return Output(state_.get(), index, s.direct, s.scale, s.direct3);
+  return Output(state_.get(), index, s.direct, s.scale, s.direct3, &state_->derived_state_behind);
 }
 
 std::vector<SignalInfo> SignalBridge::inputs() const {
@@ -249,8 +250,13 @@ void SignalBridge::after_step() {
                  "the MJCF's own elements); set your callback before attaching, and the bridge calls it\n");
   }
   state_->after_step();
-  state_->begin_watch();  // a caller that skips before_step is still watched from here
+  state_->derived_state_behind = true;  // mj_step computed them before integrating (bring_current.cpp)
+  state_->begin_watch();                // a caller that skips before_step is still watched from here
   current_sink() = nullptr;
+}
+
+void SignalBridge::set_sensor_noise(const SensorNoiseOptions& noise) {
+  state_->noise = noise;
 }
 
 void SignalBridge::set_on_instability(OnInstability what) {
@@ -268,14 +274,8 @@ void Input::set(bool value) {
   const double v = value ? 1.0 : 0.0;
   state_->write(index_, &v, 1, ValueType::Bool);
 }
-void Input::set(const Eigen::Vector2d& value) {
-  state_->write(index_, value.data(), 2, ValueType::Vec2);
-}
-void Input::set(const Eigen::Vector3d& value) {
-  state_->write(index_, value.data(), 3, ValueType::Vec3);
-}
-void Input::set(const Eigen::VectorXd& value) {
-  state_->write(index_, value.data(), static_cast<int>(value.size()), ValueType::Vector);
+void Input::set_values(const double* values, int count, ValueType given) {
+  state_->write(index_, values, count, given);
 }
 const SignalInfo& Input::info() const {
   return state_->signals[static_cast<size_t>(index_)].info;
@@ -291,18 +291,18 @@ bool Output::boolean() const {
   state_->read(index_, &v, 1, ValueType::Bool);
   return v != 0;
 }
-Eigen::Vector2d Output::vec2() const {
-  Eigen::Vector2d v;
+std::array<double, 2> Output::vec2_values() const {
+  std::array<double, 2> v{};
   state_->read(index_, v.data(), 2, ValueType::Vec2);
   return v;
 }
-Eigen::VectorXd Output::vector() const {
-  Eigen::VectorXd v(static_cast<Eigen::Index>(info().size));
+std::vector<double> Output::vector_values() const {
+  std::vector<double> v(info().size);
   state_->read(index_, v.data(), static_cast<int>(v.size()), ValueType::Vector);
   return v;
 }
-Eigen::Vector3d Output::vec3_checked() const {
-  Eigen::Vector3d v;
+std::array<double, 3> Output::vec3_checked() const {
+  std::array<double, 3> v{};
   state_->read(index_, v.data(), 3, ValueType::Vec3);
   return v;
 }

@@ -5,6 +5,7 @@
 #include "contract/steering_linkage.h"
 #include "mujoco_support/mujoco_compat.h"
 #include "runtime/rotation.h"
+#include "runtime/sensor_noise.h"
 #include "runtime/signal_conversions.h"
 #include "runtime/simulation_state.h"
 
@@ -87,6 +88,7 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     throw SignalError("output `" + s.info.name + "` is " + std::string(type_name(s.info.value)) + ", not " +
                       std::string(type_name(wanted)));
   }
+  if (derived_state_behind && reads_derived_state(b.quantity)) bring_current();
   const int id = s.ids.empty() ? -1 : s.ids.front();
   auto put = [&](const Eigen::Vector3d& v) {
     for (int i = 0; i < count && i < 3; ++i) out[i] = v[i];
@@ -153,6 +155,7 @@ void SimulationState::read(int index, double* out, int count, ValueType wanted) 
     case Quantity::SensorFields:
       for (size_t k = 0; k < s.ids.size() && k < static_cast<size_t>(count); ++k)
         out[k] = d->sensordata[m->sensor_adr[s.ids[k]] + static_cast<int>(b.initial_vector[k])];
+      add_sensor_noise(noise, b, m, s.ids, d->time, out, count);
       return;
     case Quantity::TendonSpringForce:
       out[0] = -(m->tendon_stiffness[id] * (d->ten_length[id] - tendon_rest_length(m, d, id)) +

@@ -38,6 +38,7 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   state->source = path;
   state->emitted_timestep = options.timestep;
   state->on_instability = options.on_instability;
+  state->noise = options.sensor_noise;
   std::string error;
   if (!call_mujoco(
           nullptr, [&state] { state->d = mj_makeData(state->m); }, error) ||
@@ -98,6 +99,10 @@ void Simulation::advance(double seconds) {
                                 std::to_string(kMaxAdvanceSteps) + " one call takes");
   }
   for (long k = 0; k < static_cast<long>(steps); ++k) state_->step();
+}
+
+void Simulation::set_sensor_noise(const SensorNoiseOptions& noise) {
+  state_->noise = noise;
 }
 
 void Simulation::set_on_instability(OnInstability what) {

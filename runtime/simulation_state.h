@@ -57,6 +57,7 @@ struct SimulationState final : MessageSink {
   std::string prefix;                 // the prefix of its MuJoCo names, stripped in messages
   double emitted_timestep = 0;        // the time step the model was emitted for, 0: unknown
   OnInstability on_instability = OnInstability::Throw;
+  SensorNoiseOptions noise;             // sensor noise added to outputs when read (sensor_noise.h)
   std::vector<std::string> mismatches;  // bindings resolve refused: "`path`: why" (a bridge refuses them)
   size_t run_warnings = 0;              // how many run warnings were given (at most kMaxRunWarnings are kept)
   static constexpr size_t kMaxRunWarnings = 1000;
@@ -72,6 +73,10 @@ struct SimulationState final : MessageSink {
   std::vector<Eigen::Vector3d> kinematic_angular;
   bool kinematic = false;  // some kinematic velocity was set
   bool stale = false;      // an input changed what mj_step1 computes: redo it before the next step
+  // A bridge after the user's mj_step: xpos, cvel, tendon lengths and sensors are of the state before the
+  // step (bring_current.cpp). Outputs share it by pointer so their inlined fast path can check it.
+  mutable bool derived_state_behind = false;
+  mutable std::vector<mjtNum> qpos_kept;  // bring_current's copy of qpos
   std::vector<int> constraint_signals;    // signals reading constraint forces (joint limits, motors)
   std::vector<double> constraint_forces;  // per signal: the constraint force of the step just taken
   std::map<std::pair<int, int>, EffortSwitch> switches;  // by (mjtObj, id)
@@ -130,6 +135,10 @@ struct SimulationState final : MessageSink {
   // A site's (or, body = true, a body frame's) motion now, velocities with the carried motion; accelerations
   // (coordinate, from cacc: mj_rnePostConstraint must have run) only when asked.
   FrameMotion motion(int id, bool body, bool acceleration) const;
+  void bring_current() const;  // derived fields to the state at d->time, without contacts or constraint rows
 };
+
+// Whether an output reads fields mj_step computes before integrating (so a bridge must bring them current).
+bool reads_derived_state(mjcf::Quantity q);
 
 }  // namespace openplx::runtime

@@ -175,6 +175,7 @@ VisualMaterial read_visual_material(AttributeReader& in, fe::ObjectId id) {
                              in.real(tint, "a", 1));
   m.roughness = in.number(id, "roughness");
   m.metallic = in.number(id, "metallic");
+  m.alpha = in.number(id, "alpha");
   m.roughness_written = m.roughness && assigned(in, id, "roughness");
   m.metallic_written = m.metallic && assigned(in, id, "metallic");
   for (const char* map : {"base_color_map", "roughness_map", "metallic_map", "alpha_map",

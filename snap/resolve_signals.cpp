@@ -1,5 +1,6 @@
 // Signals (inputs and outputs): their sources, composites' parts and IMU sensors' attachments.
 #include <algorithm>
+#include <cmath>
 
 #include "snap/system_builder.h"
 
@@ -70,6 +71,7 @@ void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) 
                  : is(logic, magnetometer_) ? Kind::Magnetometer
                                             : Kind::Unknown;
         f.sensor_path = path_of(sensor);
+        read_sensor_noise(sensor, f);
         const fe::ObjectId own = object(sensor, "mate_connector_attachment");
         sensor_attachments_.emplace_back(index, signal.sensor_fields.size(),
                                          own != fe::kNoObject ? own : imu_attachment);
@@ -77,6 +79,28 @@ void SystemBuilder::add_signal(fe::ObjectId id, const Role::SignalModel& model) 
       signal.sensor_fields.push_back(std::move(f));
     }
   }
+}
+
+// An IMU sensor's distortions for field `f`'s axis: Gaussian signal noise (distribution_x/y/z), several
+// adding up as independent noises do (means add, variances add); any other distortion is kept to be warned
+// about.
+void SystemBuilder::read_sensor_noise(fe::ObjectId sensor, Signal::SensorField& f) {
+  if (!ev_.graph().at(sensor).has("sensing_distortions")) return;
+  double variance = 0;
+  for (fe::ObjectId d : in_.objects(sensor, "sensing_distortions")) {
+    const std::string& type = in_.type_name(d);
+    if (type.find("SignalGaussianNoise") == std::string::npos || f.axis < 0 || f.axis > 2) {
+      f.unapplied.push_back({path_of(d), type, where_of(d)});
+      continue;
+    }
+    const fe::ObjectId g = object(d, f.axis == 0   ? "distribution_x"
+                                     : f.axis == 1 ? "distribution_y"
+                                                   : "distribution_z");
+    if (g == fe::kNoObject) continue;
+    f.noise_mean += real(g, "mean");
+    variance += std::pow(real(g, "standard_deviation"), 2);
+  }
+  f.noise_deviation = std::sqrt(variance);
 }
 
 // What a signal's values are expressed relative to: a connector output's reference connector (resolved to

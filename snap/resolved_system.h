@@ -122,6 +122,7 @@ struct VisualMaterial {
   std::optional<Eigen::Vector4d> tint;  // base_color_tint r, g, b, a (a component that is not a number: 1)
   std::optional<double> roughness, metallic;
   bool roughness_written = false, metallic_written = false;  // assigned, not the traits' defaults
+  std::optional<double> alpha;                               // Transparency's opacity
   std::vector<InlineTexture> inline_textures;  // maps that carry pixels with a positive width and height
   std::vector<FileTexture> file_textures;      // maps read from image files
   frontend::SourceRange where;
@@ -218,6 +219,14 @@ struct Signal {
     int axis = 0;
     int connector = -1;  // the sensor's mate_connector_attachment, -1 when none
     std::string sensor_path;
+    // The sensor's Gaussian signal noise on this axis (its *SignalGaussianNoise distortions added up), and
+    // the distortions nothing applies (spectral noise, a gyroscope's linear-acceleration effect).
+    double noise_mean = 0, noise_deviation = 0;
+    struct Distortion {
+      std::string path, type;
+      frontend::SourceRange where;
+    };
+    std::vector<Distortion> unapplied;
   };
   bool imu = false;
   std::vector<SensorField> sensor_fields;

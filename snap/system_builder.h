@@ -104,6 +104,7 @@ class SystemBuilder {
   void add_signal(fe::ObjectId id, const Role::SignalModel& model);
   void resolve_sensor_attachments();
   void resolve_signal_references();
+  void read_sensor_noise(fe::ObjectId sensor, Signal::SensorField& f);
   void read_relative_to(fe::ObjectId id, size_t index);
   void resolve_composites();
   void resolve_source(Signal& signal, fe::ObjectId source);

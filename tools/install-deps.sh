@@ -2,7 +2,8 @@
 # Installs the Debian packages the build needs, only those missing. Used by ./run.sh, ./test.sh, tools/fuzz.sh.
 #   tools/install-deps.sh            what ./run.sh builds and runs: the converter, openplx-sim, their modules
 #   tools/install-deps.sh --tests    also the test suite's and benchmarks' (GoogleTest, Google Benchmark,
-#                                    clang-format, GNU time), Node and the pinned mujoco-js, Xvfb
+#                                    clang-format, GNU time, Python's jsonschema), Node and the pinned
+#                                    mujoco-js, ajv and ajv-cli, Xvfb, GLFW
 #   tools/install-deps.sh --fuzz     also clang and its sanitizer runtime (libFuzzer), and GoogleTest: the
 #                                    fuzz targets are built in the sanitizer build, with the tests
 set -euo pipefail
@@ -25,6 +26,10 @@ if [[ $tests -eq 1 ]]; then
   command -v npm >/dev/null || packages+=(npm)
   # A virtual X server and screen grabs for the samples' screenshots in mujoco-simulate (viewer_screenshots).
   packages+=(xvfb x11-apps imagemagick xdotool)
+  # Python's JSON Schema validator, one of the three the manifest schema is checked in (tests/mjcf).
+  packages+=(python3-jsonschema)
+  # An OpenGL window for MuJoCo's offscreen renderer in the render tests (tests/render, on that Xvfb).
+  packages+=(libglfw3-dev)
 fi
 
 missing=()
@@ -46,8 +51,13 @@ install_packages() {
 }
 [[ ${#missing[@]} -eq 0 ]] || install_packages
 
-# mujoco-js, exactly as tests/current_mujoco/package-lock.json pins it (npm's registry; not at build time).
-if [[ $tests -eq 1 && ! -f tests/current_mujoco/node_modules/mujoco-js/package.json ]]; then
-  echo "Installing mujoco-js for tests/current_mujoco"
+# mujoco-js, ajv and ajv-cli, exactly as tests/current_mujoco/package-lock.json pins them (npm's registry; not
+# at build time); again when any of them is missing.
+node_modules_missing=0
+for module in mujoco-js ajv ajv-cli; do
+  [[ -f tests/current_mujoco/node_modules/$module/package.json ]] || node_modules_missing=1
+done
+if [[ $tests -eq 1 && $node_modules_missing -eq 1 ]]; then
+  echo "Installing mujoco-js, ajv and ajv-cli for tests/current_mujoco"
   (cd tests/current_mujoco && npm ci --no-audit --no-fund --loglevel=error)
 fi

@@ -1,7 +1,7 @@
 // A reference client of the signal manifest (docs/signals.schema.json) on npm's mujoco-js: drives a model
 // openplx2mjcf emitted by OpenPLX signal names from its OUT.signals.json alone, without the C++ runtime.
-// Each quantity is applied as the schema's `x-apply` says and the per-step work of `x-each-step` is done in
-// afterStep(). What only the runtime computes (signals marked `runtime`, the `laws`) runs as the MJCF's static
+// Each quantity is applied as its kind's description in the schema says after "Apply:", and the work it says
+// after "Each step:" is done in afterStep(). What only the runtime computes (signals marked `runtime`, the `laws`) runs as the MJCF's static
 // stand-in: such a handle has exact = false and the client's warnings say why.
 //
 //   const client = new SignalClient(mujoco, model, data, JSON.parse(manifestText));

@@ -155,14 +155,14 @@ TEST(BridgeMismatch, ManifestOfAnotherModelIsRefused) {
   remove_fingerprint(manifest_of(dir / "pendulum.xml"));
   std::string error = load_error(manifest_of(dir / "pendulum.xml"), cart_pole.m, cart_pole.d);
   EXPECT_NE(
-      error.find("pendulum.signals.json: error: the model lacks 2 of the 3 MuJoCo elements this manifest "
-                 "names (body `rod`, site `rod.top`)"),
+      error.find("pendulum.signals.json: error: the model lacks 3 of the 4 MuJoCo elements this manifest "
+                 "names (body `ground`, body `rod`, site `rod.top`)"),
       std::string::npos)
       << error;
   add_fingerprint(manifest_of(dir / "pendulum.xml"), sample("pendulum.openplx"), "");
   error = load_error(manifest_of(dir / "pendulum.xml"), cart_pole.m, cart_pole.d);
   EXPECT_NE(
-      error.find("pendulum.signals.json: error: the manifest was written for another model: it describes 1 "
+      error.find("pendulum.signals.json: error: the manifest was written for another model: it describes 2 "
                  "bodies and 1 joints"),
       std::string::npos)
       << error;

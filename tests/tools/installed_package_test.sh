@@ -3,7 +3,7 @@
 # the runtime library, openplx2mjcf_add_model converting cart_pole at build time, and two_carts balancing two
 # placed copies in one scene (exits non-zero when a pole falls or a cart runs off). A build with nothing
 # changed converts nothing; touching the model, or a bundle file the conversion read (the converter's
-# --depfile), converts again.
+# --depfile), converts again. A program built with Eigen hidden from CMake uses the bridge through std::array.
 #   installed_package_test.sh BUILD_DIR SOURCE_DIR
 set -e
 build=$1
@@ -29,6 +29,55 @@ if echo "$link" | grep -Eq 'libopenplx_(frontend|snap|mjcf|runtime|cli)\.a'; the
   exit 1
 fi
 echo "$link" | grep -q 'libopenplx_bridge\.a'
+
+# A program that uses the bridge without Eigen (Eigen3 hidden from CMake): vector signals as std::array.
+mkdir "$t/no_eigen"
+cat >"$t/no_eigen/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.16)
+project(no_eigen CXX)
+set(CMAKE_CXX_STANDARD 20)
+find_package(openplx2mjcf REQUIRED)
+add_executable(no_eigen main.cpp)
+target_link_libraries(no_eigen openplx2mjcf::bridge)
+CMAKE
+cat >"$t/no_eigen/main.cpp" <<'CPP'
+#include <openplx/runtime/signal_bridge.h>
+
+#include <cstdio>
+
+#if OPENPLX_RUNTIME_HAS_EIGEN
+#error "Eigen was hidden from this project"
+#endif
+
+int main(int argc, char** argv) {
+  if (argc != 3) return 2;
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(argv[1], nullptr, error, sizeof(error));
+  if (!m) return 1;
+  mjData* d = mj_makeData(m);
+  mj_forward(m, d);
+  {
+    auto bridge = openplx::runtime::SignalBridge::attach(argv[2], m, d);
+    bridge.input("push").set(5.0);
+    const openplx::runtime::Output cart = bridge.output("cart.position_output");
+    const std::array<double, 3> start = cart.vec3_values();
+    for (int k = 0; k < 500; ++k) {
+      bridge.before_step();
+      mj_step(m, d);
+      bridge.after_step();
+    }
+    const std::array<double, 3> end = cart.vec3_values();
+    std::printf("without Eigen: the cart moved %.3f m along x\n", end[0] - start[0]);
+  }
+  mj_deleteData(d);
+  mj_deleteModel(m);
+  return 0;
+}
+CPP
+cmake -S "$t/no_eigen" -B "$t/no_eigen/build" -DCMAKE_PREFIX_PATH="$t/prefix" -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
+make -C "$t/no_eigen/build" >/dev/null
+"$t/no_eigen/build/no_eigen" "$t/build/left_cart_pole.xml" "$t/build/left_cart_pole.signals.json"
 
 # A later mtime than anything built, whatever the file system's timestamp resolution.
 later() { touch -d "@$(($(date +%s) + $1))" "$2"; }

@@ -26,6 +26,7 @@
 #include "mjcf_emitter/document_fingerprint.h"
 #include "mjcf_emitter/emitter.h"
 #include "mjcf_emitter/mesh_files.h"
+#include "mjcf_emitter/mujoco3_collision.h"
 #include "mjcf_emitter/timestep_dependence.h"
 #include "snap/resolve_system.h"
 #include "snap/snap.h"
@@ -153,8 +154,11 @@ void check(const CliOptions& options, const std::string& xml, mjcf::Element& doc
     }
   }
   auto at = [&](const fe::SourceRange& where) { return where.file != fe::kNoFile ? where : at_root; };
+  // --check runs MuJoCo 2.2.2: --mujoco 3's collision settings, which 2.2.2 rejects, stay out of what it
+  // loads (without them 2.2.2 collides as they make 3.x do).
+  const mjcf::Mujoco3SettingsSetAside for_2_2(document);
   std::string error;
-  if (!files.write(xml, document, mesh_files, error)) {
+  if (!files.write(for_2_2.any() ? document.to_string() : xml, document, mesh_files, error)) {
     sink.report(fe::DiagCode::MjcfCheckFailed, at_root, "--check cannot write its files: " + error);
     return;
   }
@@ -312,6 +316,8 @@ bool convert(const CliOptions& options, fe::SourceManager& sources, fe::Diagnost
   emit_options.prefix = options.prefix;
   emit_options.timestep = options.timestep;
   emit_options.keyframe = options.keyframe;
+  // A file without a keyframe is made for inclusion: the scene lights it (docs/decisions.md "Scenes").
+  emit_options.light = options.lights.value_or(options.keyframe);
   emit_options.manifest_text = false;  // written to its file in pieces (write_manifest)
   emit_options.mujoco = options.mujoco3 ? mjcf::EmitOptions::MuJoCo::V3 : mjcf::EmitOptions::MuJoCo::V2;
   emit_options.exclude_initial_overlaps = options.exclude_initial_overlaps;
@@ -367,7 +373,8 @@ std::string manifest_path(const std::string& output) {
 
 std::string usage() {
   return "usage: openplx2mjcf FILE [-o OUT|-] [--model NAME] [-B DIR]... [--prefix P] [--pose POSE]\n"
-         "                    [--no-keyframe] [--timestep S] [--mujoco 2.2|3] [--no-default-bundles]\n"
+         "                    [--no-keyframe] [--lights auto|on|off] [--timestep S] [--mujoco 2.2|3]\n"
+         "                    [--no-default-bundles]\n"
          "                    [--strict] [--check] [--check-time T] [--exclude-initial-overlaps]\n"
          "                    [--urdf-exact-mesh-mass] [--collada-up-axis] [--depfile DEP]\n"
          "                    [--dump=tokens|ast|values|snap]\n"
@@ -393,9 +400,13 @@ std::string usage() {
          "                 checks a keyframe against the whole scene, and an included file's keyframe has\n"
          "                 its own model's sizes (MuJoCo rejects the scene: 'invalid ctrl size'); a\n"
          "                 SignalBridge sets the initial controls instead\n"
+         "  --lights L     auto (default), on or off: a directional light when the model has none. auto is\n"
+         "                 on, but off with --no-keyframe: an included file leaves lighting to its scene\n"
+         "                 (each file's light would add to the scene's)\n"
          "  --timestep S   MuJoCo's time step in seconds (default 0.002; OpenPLX has no setting for it)\n"
          "  --mujoco V     2.2 (default) or 3: the MuJoCo whose soft-weld laws set flexible loop closures'\n"
-         "                 numbers (the file loads in both either way)\n"
+         "                 numbers; 3 also writes <flag nativeccd=\"disable\"/> so that 3.x collides as\n"
+         "                 2.2.2 does, and only 3.x loads that file (--check loads it without the flag)\n"
          "  --strict       treat warnings as errors\n"
          "  --check        load the MJCF with MuJoCo and compare every body with its SNAP pose, list\n"
          "                 collision geometry that overlaps at the start, then simulate the model from its\n"
@@ -498,6 +509,18 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
       options.pose = mjcf::parse_placement(value, error);
       if (!options.pose) {
         error = "--pose: " + error;
+        return std::nullopt;
+      }
+      continue;
+    }
+    if (!take_value(args, i, "--lights", "", value, error, matched)) return std::nullopt;
+    if (matched) {
+      if (value == "auto") {
+        options.lights.reset();
+      } else if (value == "on" || value == "off") {
+        options.lights = value == "on";
+      } else {
+        error = "--lights takes auto, on or off, not '" + value + "'";
         return std::nullopt;
       }
       continue;

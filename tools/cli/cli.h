@@ -31,6 +31,7 @@ struct CliOptions {
   double timestep = 0.002;                // --timestep S: MuJoCo's time step (OpenPLX has no setting for it)
   bool mujoco3 = false;                   // --mujoco 3: soft-weld laws of MuJoCo 3.x
   bool keyframe = true;                   // --no-keyframe: leave the initial keyframe out
+  std::optional<bool> lights;             // --lights on|off; auto (unset): a light unless --no-keyframe
   bool default_bundles = true;            // --no-default-bundles: only -B and OPENPLX_BUNDLE_PATH bundles
   std::optional<mjcf::Placement> pose;    // --pose "x y z [qw qx qy qz]": the model placed in a scene
   std::optional<std::string> depfile;     // --depfile FILE: a Make-style list of every file read

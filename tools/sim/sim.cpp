@@ -97,6 +97,7 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
   load.bundle_paths = options.bundle_dirs;
   load.default_bundles = options.default_bundles;
   load.timestep = options.timestep;
+  load.sensor_noise = {options.noise, options.seed};
   if (!options.csv.empty()) {  // never overwrite the input
     std::error_code ec;
     if (std::filesystem::equivalent(options.csv, options.input, ec)) {

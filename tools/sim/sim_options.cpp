@@ -1,6 +1,7 @@
 #include "tools/sim/sim_options.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -17,6 +18,17 @@ std::optional<double> parse_number(const std::string& text) {
   while (*end == ' ') ++end;
   if (*end != '\0' || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+// A decimal number that fits 64 unsigned bits, digits only (strtoull alone takes "-1" as 2^64 - 1).
+std::optional<std::uint64_t> parse_seed(const std::string& text) {
+  if (text.empty() || text.size() > 20 ||
+      !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  errno = 0;
+  const unsigned long long value = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) return std::nullopt;
+  return static_cast<std::uint64_t>(value);
 }
 
 // "NAME=VALUE"
@@ -58,7 +70,8 @@ std::string sim_usage() {
   return "usage: openplx-sim FILE [--model NAME] [-B DIR]... [--no-default-bundles] [--time T] [--timestep "
          "S] [--set "
          "NAME=VALUE]...\n"
-         "                   [--at T NAME=VALUE]... [--print NAME]... [--csv FILE] [--list]\n"
+         "                   [--at T NAME=VALUE]... [--print NAME]... [--csv FILE] [--list] [--seed N] "
+         "[--no-noise]\n"
          "Runs an OpenPLX model headless in MuJoCo. VALUE is a number, true/false, {a, b}, {x, y, z} or, for "
          "a\n"
          "composite robot input, one value per target: {a, b, c, ...}.\n"
@@ -68,7 +81,10 @@ std::string sim_usage() {
          "  --at T NAME=V    set an input once the simulated time reaches T\n"
          "  --print NAME     print an output's final value as `NAME = value`\n"
          "  --csv FILE       write the time series of the printed outputs\n"
-         "  --list           list inputs and outputs with their types and MuJoCo elements\n";
+         "  --list           list inputs and outputs with their types and MuJoCo elements\n"
+         "  --seed N         seed of the sensor noise, 0 to 2^64-1 (default 0): the same seed, the same "
+         "values\n"
+         "  --no-noise       outputs without the model's sensor noise (lidar distance, IMU signal noise)\n";
 }
 
 std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args, std::string& error) {
@@ -87,6 +103,16 @@ std::optional<SimOptions> parse_sim_options(const std::vector<std::string>& args
       options.help = true;
     } else if (arg == "--list") {
       options.list = true;
+    } else if (arg == "--no-noise") {
+      options.noise = false;
+    } else if (arg == "--seed") {
+      if (!value()) return std::nullopt;
+      std::optional<std::uint64_t> seed = parse_seed(args[++i]);
+      if (!seed) {
+        error = "--seed needs a whole number from 0 to 18446744073709551615, got '" + args[i] + "'";
+        return std::nullopt;
+      }
+      options.seed = *seed;
     } else if (arg == "--no-default-bundles") {
       options.default_bundles = false;
     } else if (arg == "--model") {

@@ -1,9 +1,10 @@
 // The `openplx-sim` command line:
 //   openplx-sim FILE [--model NAME] [-B DIR]... [--time T] [--set NAME=VALUE]... [--at T NAME=VALUE]...
-//               [--print NAME]... [--csv FILE] [--list]
+//               [--print NAME]... [--csv FILE] [--list] [--seed N] [--no-noise]
 // VALUE is a number, true/false, {a, b} or {x, y, z}.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,8 @@ struct SimOptions {
   std::string csv;
   bool list = false;
   bool help = false;
+  bool noise = true;       // --no-noise: outputs without the model's sensor noise
+  std::uint64_t seed = 0;  // --seed: the sensor noise's seed (runtime::SensorNoiseOptions)
 };
 
 // Parses argv[1..]; nullopt and `error` on a usage error.

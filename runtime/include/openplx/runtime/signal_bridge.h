@@ -40,8 +40,9 @@ class SignalBridge {
   // manifest's is a warning in warnings() when the model's stability choices follow it (the manifest's
   // timestep_dependent). The manifest's format: docs/signals.schema.json.
   // Also installs MuJoCo's message handlers when none are set (runtime/README.md "MuJoCo's messages").
+  // `noise`: the sensor noise the manifest gives outputs (on, seed 0 by default; see signals.h).
   static SignalBridge attach(const std::string& manifest, mjModel* model, mjData* data,
-                             const std::string& prefix = "");
+                             const std::string& prefix = "", const SensorNoiseOptions& noise = {});
 
   SignalBridge(SignalBridge&&) noexcept;
   SignalBridge& operator=(SignalBridge&&) noexcept;
@@ -59,6 +60,7 @@ class SignalBridge {
   void before_step();
   void after_step();
   void set_on_instability(OnInstability what);
+  void set_sensor_noise(const SensorNoiseOptions& noise);  // from the next read on
   // Run warnings: inputs clamped to their range (once per input), MuJoCo's warnings and instabilities under
   // OnInstability::Continue; each a line ending in '\n'.
   const std::vector<std::string>& warnings() const;

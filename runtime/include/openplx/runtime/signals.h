@@ -12,13 +12,21 @@
 
 #include <mujoco/mujoco.h>
 
-#include <Eigen/Core>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#if !defined(OPENPLX_RUNTIME_NO_EIGEN) && __has_include(<Eigen/Core>)
+#include <Eigen/Core>
+#define OPENPLX_RUNTIME_HAS_EIGEN 1
+#else
+#define OPENPLX_RUNTIME_HAS_EIGEN 0
+#endif
 
 namespace openplx::runtime {
 
@@ -61,6 +69,14 @@ enum class OnInstability {
              // warnings() instead (at most 1000 run warnings are kept)
 };
 
+// Sensor noise (a lidar's distance noise, an IMU's Gaussian signal noise, as the model gives them) is added
+// when an output is read. Each draw depends on the seed, the sensor, its axis and the simulated time only:
+// the same seed gives the same values, and reading an output again within a step gives the same value.
+struct SensorNoiseOptions {
+  bool enabled = true;     // false: outputs read exactly what MuJoCo computed
+  std::uint64_t seed = 0;  // the default seed is 0
+};
+
 enum class ValueType { Real, Bool, Int, Vec2, Vec3, Vector };  // Vector: a composite robot signal
 
 struct SignalInfo {
@@ -79,6 +95,11 @@ class SignalBridge;
 
 // Handles to one signal. Scalar joint and actuator signals take an inlined fast path (a pointer into
 // mjData resolved at load), so a controller pays a few nanoseconds per signal per step.
+//
+// Vector values come as std::array/std::vector (set_vec3, vec3_values, ...), so a program needs no Eigen;
+// where <Eigen/Core> is on the include path (find_package(openplx2mjcf) adds it when Eigen3 is installed),
+// the same values are also Eigen vectors (set(Eigen::Vector3d), vec3(), ...). Define
+// OPENPLX_RUNTIME_NO_EIGEN to leave the Eigen forms out.
 class Input {
  public:
   void set(double value) {
@@ -89,9 +110,23 @@ class Input {
     }
   }
   void set(bool value);
-  void set(const Eigen::Vector2d& value);
-  void set(const Eigen::Vector3d& value);
-  void set(const Eigen::VectorXd& value);  // a composite (Robotics RobotInput): one value per target
+  void set_vec2(const std::array<double, 2>& value) { set_values(value.data(), 2, ValueType::Vec2); }
+  void set_vec3(const std::array<double, 3>& value) { set_values(value.data(), 3, ValueType::Vec3); }
+  // A composite (Robotics RobotInput): one value per target.
+  void set_vector(const std::vector<double>& values) {
+    set_values(values.data(), static_cast<int>(values.size()), ValueType::Vector);
+  }
+#if OPENPLX_RUNTIME_HAS_EIGEN
+  void set(const Eigen::Vector2d& value) {
+    set_values(value.data(), 2, ValueType::Vec2);
+  }
+  void set(const Eigen::Vector3d& value) {
+    set_values(value.data(), 3, ValueType::Vec3);
+  }
+  void set(const Eigen::VectorXd& value) {
+    set_values(value.data(), static_cast<int>(value.size()), ValueType::Vector);
+  }
+#endif
   const SignalInfo& info() const;
 
  private:
@@ -99,34 +134,56 @@ class Input {
   Input(SimulationState* state, int index, double* direct, double low, double high)
       : state_(state), index_(index), direct_(direct), low_(low), high_(high) {}
   void set_checked(double value);
+  void set_values(const double* values, int count, ValueType given);
   SimulationState* state_;
   int index_;
   double* direct_;     // a Real input that is one mjData number, else null
   double low_, high_;  // the values the fast path writes as they are: its range, else all finite numbers
 };
 
+// Outputs read after a bridge's after_step() are the state at the new time, as a Simulation's are: the
+// first read of a body, site, tendon or sensor output brings MuJoCo's derived fields (xpos, cvel,
+// site_xpos, ten_length, sensordata of the position and velocity stages) up to date in your mjData, as
+// mj_forward's first stages would; contacts and constraint rows (efc_*) are left as mj_step left them.
 class Output {
  public:
   double real() const { return direct_ ? scale_ * *direct_ : real_checked(); }
   bool boolean() const;
-  Eigen::Vector2d vec2() const;
-  Eigen::VectorXd vector() const;  // a composite (Robotics RobotOutput): its sources' values in order
-  Eigen::Vector3d vec3() const {
-    return direct3_ ? Eigen::Vector3d(direct3_[0], direct3_[1], direct3_[2]) : vec3_checked();
+  std::array<double, 2> vec2_values() const;
+  std::array<double, 3> vec3_values() const {
+    if (direct3_ && !*behind_) return {direct3_[0], direct3_[1], direct3_[2]};
+    return vec3_checked();
   }
+  std::vector<double> vector_values() const;  // a composite (Robotics RobotOutput): its sources' values
+#if OPENPLX_RUNTIME_HAS_EIGEN
+  Eigen::Vector2d vec2() const {
+    const std::array<double, 2> v = vec2_values();
+    return {v[0], v[1]};
+  }
+  Eigen::Vector3d vec3() const {
+    const std::array<double, 3> v = vec3_values();
+    return {v[0], v[1], v[2]};
+  }
+  Eigen::VectorXd vector() const {
+    const std::vector<double> v = vector_values();
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+  }
+#endif
   const SignalInfo& info() const;
 
  private:
   friend class SignalBridge;
-  Output(SimulationState* state, int index, const double* direct, double scale, const double* direct3)
-      : state_(state), index_(index), direct_(direct), scale_(scale), direct3_(direct3) {}
+  Output(SimulationState* state, int index, const double* direct, double scale, const double* direct3,
+         const bool* behind)
+      : state_(state), index_(index), direct_(direct), scale_(scale), direct3_(direct3), behind_(behind) {}
   double real_checked() const;
-  Eigen::Vector3d vec3_checked() const;
+  std::array<double, 3> vec3_checked() const;
   SimulationState* state_;
   int index_;
   const double* direct_;  // a Real output that is one mjData number (times scale_), else null
   double scale_;
   const double* direct3_;  // a Vec3 output that is three consecutive mjData numbers, else null
+  const bool* behind_;     // direct3_'s numbers are a step old (a bridge after mj_step): read them checked
 };
 
 }  // namespace openplx::runtime
