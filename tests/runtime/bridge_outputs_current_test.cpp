@@ -14,14 +14,13 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "openplx/runtime/signal_bridge.h"
 #include "openplx/runtime/simulation.h"
+#include "tests/support/converted_model.h"
 #include "tests/support/scratch_dir.h"
-#include "tools/cli/cli.h"
 
 namespace {
 
@@ -55,29 +54,19 @@ void set(rt::Input in, double value) {
     in.set(value);
 }
 
-// A sample converted to MJCF and loaded as a user would: plain mj_loadXML, its "initial" keyframe.
+// A sample converted to MJCF and loaded as a user would (tests/support/converted_model.h).
 struct Loaded {
   openplx::testing::ScratchDir dir;
   std::string model;
-  mjModel* m = nullptr;
-  mjData* d = nullptr;
+  openplx::testing::ConvertedModel converted;
+  mjModel* m;
+  mjData* d;
   explicit Loaded(const std::string& sample)
-      : model(std::string(OPENPLX_SAMPLES_DIR) + "/" + sample + ".openplx") {
-    std::ostringstream text, errors;
-    EXPECT_EQ(openplx::cli::run({model, "-o", (dir / "m.xml").string()}, text, errors), 0) << errors.str();
-    char error[1000] = "";
-    m = mj_loadXML((dir / "m.xml").c_str(), nullptr, error, sizeof(error));
-    EXPECT_NE(m, nullptr) << error;
-    if (!m) return;
-    d = mj_makeData(m);
-    if (const int key = mj_name2id(m, mjOBJ_KEY, "initial"); key >= 0) mj_resetDataKeyframe(m, d, key);
-    mj_forward(m, d);
-  }
-  std::string manifest() const { return (dir / "m.signals.json").string(); }
-  ~Loaded() {
-    if (d) mj_deleteData(d);
-    if (m) mj_deleteModel(m);
-  }
+      : model(std::string(OPENPLX_SAMPLES_DIR) + "/" + sample + ".openplx"),
+        converted(dir.path(), model),
+        m(converted.m),
+        d(converted.d) {}
+  std::string manifest() const { return converted.manifest.string(); }
 };
 
 // Outputs whose value is the state at an instant (not a force or an acceleration the step kept, nor an

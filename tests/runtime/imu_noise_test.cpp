@@ -16,6 +16,7 @@
 
 #include "openplx/runtime/signal_bridge.h"
 #include "openplx/runtime/simulation.h"
+#include "tests/support/converted_model.h"
 #include "tests/support/sample_statistics.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
@@ -111,29 +112,18 @@ Series run_simulation(const fs::path& file, std::uint64_t seed, int steps = kRea
 }
 
 Series run_bridge(const ScratchDir& dir, const fs::path& file, const rt::SensorNoiseOptions& noise) {
-  std::ostringstream out, err;
-  const fs::path xml = dir / "imu.xml";
-  EXPECT_EQ(openplx::cli::run({file.string(), "-o", xml.string()}, out, err), 0) << err.str();
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(xml.string().c_str(), nullptr, error, sizeof error);
-  EXPECT_NE(m, nullptr) << error;
+  const openplx::testing::ConvertedModel model(dir.path(), file.string(), "imu");
   Series s;
-  if (!m) return s;
-  mjData* d = mj_makeData(m);
-  mj_forward(m, d);
-  {
-    rt::SignalBridge bridge = rt::SignalBridge::attach((dir / "imu.signals.json").string(), m, d, "", noise);
-    rt::Output readings = bridge.output("readings");
-    for (int k = 0; k < kReadings; ++k) {
-      bridge.before_step();
-      mj_step(m, d);
-      bridge.after_step();
-      const Eigen::VectorXd v = readings.vector();
-      for (int f = 0; f < kFields; ++f) s.noisy.push_back(v[f]);
-    }
+  if (!model.m) return s;
+  rt::SignalBridge bridge = rt::SignalBridge::attach(model.manifest.string(), model.m, model.d, "", noise);
+  rt::Output readings = bridge.output("readings");
+  for (int k = 0; k < kReadings; ++k) {
+    bridge.before_step();
+    mj_step(model.m, model.d);
+    bridge.after_step();
+    const Eigen::VectorXd v = readings.vector();
+    for (int f = 0; f < kFields; ++f) s.noisy.push_back(v[f]);
   }
-  mj_deleteData(d);
-  mj_deleteModel(m);
   return s;
 }
 

@@ -14,6 +14,7 @@
 
 #include "openplx/runtime/signal_bridge.h"
 #include "openplx/runtime/simulation.h"
+#include "tests/support/converted_model.h"
 #include "tests/support/sample_statistics.h"
 #include "tests/support/scratch_dir.h"
 #include "tools/cli/cli.h"
@@ -102,31 +103,19 @@ Readings run_simulation(const fs::path& file, const rt::SensorNoiseOptions& nois
 // The model converted to MJCF and its manifest, loaded with MuJoCo's own mj_loadXML and driven by a bridge
 // around plain mj_step.
 Readings run_bridge(const ScratchDir& dir, const fs::path& file, const rt::SensorNoiseOptions& noise) {
-  std::ostringstream out, err;
-  const fs::path xml = dir / "lidar.xml";
-  EXPECT_EQ(openplx::cli::run({file.string(), "-o", xml.string()}, out, err), 0) << err.str();
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(xml.string().c_str(), nullptr, error, sizeof error);
-  EXPECT_NE(m, nullptr) << error;
+  const openplx::testing::ConvertedModel model(dir.path(), file.string(), "lidar");
   Readings r;
-  if (!m) return r;
-  mjData* d = mj_makeData(m);
-  mj_forward(m, d);
-  {
-    rt::SignalBridge bridge =
-        rt::SignalBridge::attach((dir / "lidar.signals.json").string(), m, d, "", noise);
-    rt::Output scan = bridge.output("scan");
-    for (int k = 0; k < kReadings; ++k) {
-      bridge.before_step();
-      mj_step(m, d);
-      bridge.after_step();
-      const Eigen::VectorXd v = scan.vector();
-      r.hit.push_back(v[0]);
-      r.miss_exact = r.miss_exact && v[1] == -1.0;
-    }
+  if (!model.m) return r;
+  rt::SignalBridge bridge = rt::SignalBridge::attach(model.manifest.string(), model.m, model.d, "", noise);
+  rt::Output scan = bridge.output("scan");
+  for (int k = 0; k < kReadings; ++k) {
+    bridge.before_step();
+    mj_step(model.m, model.d);
+    bridge.after_step();
+    const Eigen::VectorXd v = scan.vector();
+    r.hit.push_back(v[0]);
+    r.miss_exact = r.miss_exact && v[1] == -1.0;
   }
-  mj_deleteData(d);
-  mj_deleteModel(m);
   return r;
 }
 
