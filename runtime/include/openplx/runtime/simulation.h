@@ -28,7 +28,7 @@ struct LoadOptions {
   double timestep = 0.002;                // MuJoCo's time step, s (like openplx2mjcf --timestep)
   bool default_bundles = true;  // false: only bundle_paths and OPENPLX_BUNDLE_PATH (--no-default-bundles)
   OnInstability on_instability = OnInstability::Throw;
-  SensorNoiseOptions sensor_noise;  // the model's sensor noise: on, seed 0 (openplx-sim --seed, --no-noise)
+  SensorNoiseOptions sensor_noise{};  // on, seed 0 (openplx-sim --seed, --no-noise)
 };
 
 // A model loaded from OpenPLX, with its own mjModel and mjData and one SignalBridge on them.
