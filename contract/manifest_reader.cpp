@@ -6,7 +6,9 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
+#include <unordered_set>
 
 namespace openplx::mjcf {
 
@@ -16,60 +18,140 @@ using nlohmann::json;
 
 // Enums by the names to_string gives them; each enum runs from 0 to its last enumerator.
 template <typename E>
-E parse_enum(const std::string& text, E last, const char* what) {
+E parse_enum(const std::string& text, E last, const char* key) {
   for (int k = 0; k <= static_cast<int>(last); ++k) {
     if (to_string(static_cast<E>(k)) == text) return static_cast<E>(k);
   }
-  throw std::invalid_argument(std::string("unknown ") + what + " `" + text + "`");
+  throw std::invalid_argument("`" + std::string(key) + "`: unknown " + key + " `" + text + "`");
+}
+
+// A field's value for a message: its JSON text, cut short.
+std::string shown(const json& v) {
+  std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return text;
+}
+
+// Field troubles are std::invalid_argument with what() "`key` ..."; the caller adds the signal or law.
+[[noreturn]] void wrong(const std::string& key, const char* wanted, const json& v) {
+  throw std::invalid_argument("`" + key + "` must be " + wanted + ", not " + shown(v));
+}
+
+const json& field(const json& j, const char* key) {
+  const auto at = j.find(key);
+  if (at == j.end()) throw std::invalid_argument("`" + std::string(key) + "` is missing");
+  return *at;
+}
+
+std::string str(const json& j, const char* key) {
+  const json& v = field(j, key);
+  if (!v.is_string()) wrong(key, "a string", v);
+  return v.get<std::string>();
+}
+
+bool flag(const json& j, const char* key) {
+  const json& v = field(j, key);
+  if (!v.is_boolean()) wrong(key, "true or false", v);
+  return v.get<bool>();
 }
 
 // Numbers, and the strings the writer uses for values JSON cannot hold ("inf", "-inf", "nan").
-double real(const json& v) {
+double real(const json& v, const std::string& key) {
   if (v.is_number()) return v.get<double>();
-  const std::string text = v.get<std::string>();
-  if (text == "inf") return std::numeric_limits<double>::infinity();
-  if (text == "-inf") return -std::numeric_limits<double>::infinity();
-  if (text == "nan") return std::numeric_limits<double>::quiet_NaN();
-  throw std::invalid_argument("`" + text + "` is not a number");
+  if (v.is_string()) {
+    const std::string& s = v.get_ref<const std::string&>();
+    if (s == "inf") return std::numeric_limits<double>::infinity();
+    if (s == "-inf") return -std::numeric_limits<double>::infinity();
+    if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
+  }
+  wrong(key, "a number (or \"inf\", \"-inf\", \"nan\")", v);
 }
 
-std::vector<double> reals(const json& v) {
+double real(const json& j, const char* key) {
+  return real(field(j, key), std::string(key));
+}
+
+const json& array(const json& j, const char* key) {
+  const json& v = field(j, key);
+  if (!v.is_array()) wrong(key, "an array", v);
+  return v;
+}
+
+std::vector<double> reals(const json& j, const char* key) {
   std::vector<double> out;
-  for (const json& item : v) out.push_back(real(item));
+  for (const json& item : array(j, key))
+    out.push_back(real(item, std::string(key) + "[" + std::to_string(out.size()) + "]"));
   return out;
+}
+
+std::vector<std::string> texts(const json& j, const char* key) {
+  std::vector<std::string> out;
+  for (const json& item : array(j, key)) {
+    if (!item.is_string()) wrong(std::string(key) + "[" + std::to_string(out.size()) + "]", "a string", item);
+    out.push_back(item.get<std::string>());
+  }
+  return out;
+}
+
+// A whole number within [low, high]: JSON's integers, and numbers with a zero fraction (JSON Schema's
+// integers include 1.0); nothing for other numbers, 1e300 and 2^64 among them (no cast that overflows).
+std::optional<long long> whole_number(const json& v, long long low, long long high) {
+  if (v.is_number_unsigned()) {
+    const uint64_t x = v.get<uint64_t>();
+    if (high >= 0 && x <= static_cast<uint64_t>(high) && (low <= 0 || x >= static_cast<uint64_t>(low)))
+      return static_cast<long long>(x);
+    return std::nullopt;
+  }
+  if (v.is_number_integer()) {
+    const int64_t x = v.get<int64_t>();
+    if (x >= low && x <= high) return x;
+    return std::nullopt;
+  }
+  if (v.is_number_float()) {
+    const double x = v.get<double>();
+    if (std::floor(x) == x && x >= static_cast<double>(low) && x <= static_cast<double>(high))
+      return static_cast<long long>(x);
+  }
+  return std::nullopt;
 }
 
 SignalBinding binding(const json& j) {
   SignalBinding b;
-  b.path = j.at("path").get<std::string>();
-  b.input = j.at("direction").get<std::string>() == "input";
-  b.type = j.at("type").get<std::string>();
-  b.value = parse_enum(j.at("value").get<std::string>(), SignalValue::Vector, "value kind");
-  b.unit = j.at("unit").get<std::string>();
-  b.enabled = j.at("enabled").get<bool>();
-  b.quantity = parse_enum(j.at("quantity").get<std::string>(), Quantity::Constant, "quantity");
-  b.object = parse_enum(j.at("object").get<std::string>(), MjObject::Sensor, "object");
-  b.names = j.at("names").get<std::vector<std::string>>();
-  b.sensor = j.at("sensor").get<std::string>();
-  b.sign = real(j.at("sign"));
-  b.initial = real(j.at("initial"));
-  b.initial_vector = reals(j.at("initial_vector"));
-  b.low = real(j.at("low"));
-  b.high = real(j.at("high"));
-  b.reason = j.at("reason").get<std::string>();
-  b.runtime = j.value("runtime", false);
+  const std::string direction = str(j, "direction");
+  if (direction != "input" && direction != "output") wrong("direction", "\"input\" or \"output\"", direction);
+  b.input = direction == "input";
+  b.type = str(j, "type");
+  b.value = parse_enum(str(j, "value"), SignalValue::Vector, "value");
+  b.unit = str(j, "unit");
+  b.enabled = flag(j, "enabled");
+  b.quantity = parse_enum(str(j, "quantity"), Quantity::Constant, "quantity");
+  b.object = parse_enum(str(j, "object"), MjObject::Sensor, "object");
+  b.names = texts(j, "names");
+  b.sensor = str(j, "sensor");
+  b.sign = real(j, "sign");
+  b.initial = real(j, "initial");
+  b.initial_vector = reals(j, "initial_vector");
+  b.low = real(j, "low");
+  b.high = real(j, "high");
+  b.reason = str(j, "reason");
+  if (j.contains("runtime")) b.runtime = flag(j, "runtime");
   if (j.contains("noise")) {
     const json& n = j.at("noise");
-    b.noise.mean = reals(n.at("mean"));
-    b.noise.deviation = reals(n.at("deviation"));
-    if (n.contains("deviation_per_metre")) b.noise.deviation_per_metre = reals(n.at("deviation_per_metre"));
+    if (!n.is_object()) wrong("noise", "an object", n);
+    try {
+      b.noise.mean = reals(n, "mean");
+      b.noise.deviation = reals(n, "deviation");
+      if (n.contains("deviation_per_metre")) b.noise.deviation_per_metre = reals(n, "deviation_per_metre");
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("its noise's ") + e.what());
+    }
   }
   return b;
 }
 
 RuntimeLaw law(const json& j) {
   RuntimeLaw l;
-  const std::string kind = j.at("kind").get<std::string>();
+  const std::string kind = str(j, "kind");
   bool known = false;
   for (RuntimeLaw::Kind k :
        {RuntimeLaw::Kind::Engine, RuntimeLaw::Kind::TorqueConverter, RuntimeLaw::Kind::Spring,
@@ -80,18 +162,17 @@ RuntimeLaw law(const json& j) {
     }
   }
   if (!known) throw std::invalid_argument("unknown law `" + kind + "`");
-  l.path = j.at("path").get<std::string>();
-  l.actuators = j.at("actuators").get<std::vector<std::string>>();
-  l.curve_x = reals(j.at("curve_x"));
-  l.curve_y = reals(j.at("curve_y"));
-  l.curve2_x = reals(j.at("curve2_x"));
-  l.curve2_y = reals(j.at("curve2_y"));
-  l.parameter = real(j.at("parameter"));
-  if (j.contains("joint_damping")) l.joint_damping = real(j.at("joint_damping"));
-  if (j.contains("stiffness")) l.stiffness = real(j.at("stiffness"));
+  l.actuators = texts(j, "actuators");
+  l.curve_x = reals(j, "curve_x");
+  l.curve_y = reals(j, "curve_y");
+  l.curve2_x = reals(j, "curve2_x");
+  l.curve2_y = reals(j, "curve2_y");
+  l.parameter = real(j, "parameter");
+  if (j.contains("joint_damping")) l.joint_damping = real(j, "joint_damping");
+  if (j.contains("stiffness")) l.stiffness = real(j, "stiffness");
   for (auto [key, names] :
        {std::pair{"joints", &l.joints}, {"tendons", &l.tendons}, {"equalities", &l.equalities}})
-    if (j.contains(key)) *names = j.at(key).get<std::vector<std::string>>();
+    if (j.contains(key)) *names = texts(j, key);
   return l;
 }
 
@@ -167,6 +248,87 @@ bool object_fits(Quantity q, MjObject o) {
   return false;
 }
 
+// The value kinds a quantity gives or takes, as the runtime reads and writes them (signal_reads.cpp,
+// signal_writes.cpp): a scalar quantity fills one number, a vector one three; another kind would leave the
+// caller's other numbers unwritten or write past them. "" when `v` fits.
+std::string value_problem(Quantity q, SignalValue v) {
+  using V = SignalValue;
+  auto want = [&](std::initializer_list<V> kinds, const char* what) -> std::string {
+    for (V k : kinds) {
+      if (k == v) return "";
+    }
+    return "quantity `" + std::string(to_string(q)) + "` " + what + ", not `" + std::string(to_string(v)) +
+           "`";
+  };
+  switch (q) {
+    case Quantity::None:
+      return "";
+    case Quantity::EqualityActive:
+    case Quantity::InteractionEnabled:
+    case Quantity::Engaged:
+      return want({V::Bool}, "is on or off (value `bool`)");
+    case Quantity::GearSelect:
+      return want({V::Int}, "is a gear number (value `int`)");
+    case Quantity::ForceRange:
+    case Quantity::MotorForceRange:
+      return want({V::Vec2}, "is a range of two numbers (value `vec2`)");
+    case Quantity::Composite:
+    case Quantity::SensorFields:
+      return want({V::Vector}, "is a list of numbers (value `vector`)");
+    case Quantity::Constant:
+      return want({V::Real, V::Bool, V::Int}, "is one number (value `real`, `bool` or `int`)");
+    case Quantity::Broadcast:  // its targets' kind; each target checks what it is given
+      return want({V::Real, V::Bool, V::Int, V::Vec2, V::Vec3}, "takes its targets' kind of value");
+    case Quantity::KinematicLinearVelocity:
+    case Quantity::KinematicAngularVelocity:
+    case Quantity::FreeLinearVelocity:
+    case Quantity::FreeAngularVelocity:
+    case Quantity::BodyPosition:
+    case Quantity::BodyRPY:
+    case Quantity::BodyLinearVelocity:
+    case Quantity::BodyAngularVelocity:
+    case Quantity::BodyLinearAcceleration:
+    case Quantity::BodyTorque:
+    case Quantity::SitePosition:
+    case Quantity::SiteRPY:
+    case Quantity::SiteLinearVelocity:
+    case Quantity::SiteAngularVelocity:
+    case Quantity::SiteLinearAcceleration:
+    case Quantity::SiteAngularAcceleration:
+    case Quantity::SiteRelativePosition:
+    case Quantity::SiteRelativeRPY:
+    case Quantity::SiteRelativeLinearVelocity:
+    case Quantity::SiteRelativeAngularVelocity:
+    case Quantity::SiteRelativeLinearAcceleration:
+    case Quantity::SiteRelativeAngularAcceleration:
+    case Quantity::MateForce:
+    case Quantity::MateTorque:
+    case Quantity::MateForceInFrame:
+    case Quantity::MateTorqueInFrame:
+      return want({V::Vec3}, "is three numbers (value `vec3`)");
+    case Quantity::Ctrl:
+    case Quantity::EngagementFraction:
+    case Quantity::EngageDuration:
+    case Quantity::DisengageDuration:
+    case Quantity::GearRatio:
+    case Quantity::DistanceTarget:
+    case Quantity::EqualityTarget:
+    case Quantity::JointPosition:
+    case Quantity::JointVelocity:
+    case Quantity::ActuatorForce:
+    case Quantity::MotorForce:
+    case Quantity::JointLimitForce:
+    case Quantity::EqualityForce:
+    case Quantity::TendonVelocity:
+    case Quantity::TendonLength:
+    case Quantity::TendonLimitForce:
+    case Quantity::TendonSpringForce:
+    case Quantity::Affine:
+      return want({V::Real}, "is one number (value `real`)");
+  }
+  return "";
+}
+
 bool all_finite(const std::vector<double>& values) {
   for (double v : values) {
     if (!std::isfinite(v)) return false;
@@ -229,7 +391,9 @@ std::string binding_problem(const SignalBinding& b) {
       if (!value_is(SignalValue::Int)) return "a gear is an Int (value `int`)";
       if (std::floor(b.initial) != b.initial || std::abs(b.initial) > 1e9)
         return "its initial gear is not a whole number of a gearbox";
-      if (!std::isfinite(b.low)) return "its forward gear count (low) is not finite";
+      if (!(b.low >= 0 && b.low <= static_cast<double>(b.initial_vector.size())) ||
+          std::floor(b.low) != b.low)
+        return "its forward gear count (low) must be a whole number from 0 to the number of its ratios";
       break;
     case Quantity::Affine:
       if (!std::isfinite(b.low) || !std::isfinite(b.high)) return "its scale and offset must be finite";
@@ -256,7 +420,7 @@ std::string binding_problem(const SignalBinding& b) {
     default:
       break;
   }
-  return "";
+  return value_problem(q, b.value);  // after the particular messages above
 }
 
 // Sensor noise: on a sensor's values only, each list one number for all of them or one per value, means
@@ -332,42 +496,83 @@ Manifest read_manifest(const std::string& path) {
 
 Manifest parse_manifest(const std::string& text, const std::string& path) {
   Manifest m;
+  json j;
   try {
-    const json j = json::parse(text);
-    // First: a newer format may have changed whatever follows.
-    m.format_version = j.value("format_version", 0);
-    if (m.format_version > kManifestFormatVersion) {
-      throw ManifestError(path + ": error: the manifest's format_version is " +
-                          std::to_string(m.format_version) + " but this runtime reads up to " +
-                          std::to_string(kManifestFormatVersion) +
-                          " (a newer openplx2mjcf wrote it: use the runtime of that version)\n");
-    }
-    m.model = j.at("model").get<std::string>();
-    m.prefix = j.value("prefix", std::string());
-    m.fingerprint = j.value("fingerprint", std::string());
-    if (j.contains("timestep")) m.timestep = real(j.at("timestep"));
-    m.mujoco = j.value("mujoco", std::string());
-    m.timestep_dependent = j.value("timestep_dependent", true);
-    m.timestep_choices = j.value("timestep_choices", std::vector<std::string>());
-    for (const json& s : j.at("signals")) m.signals.push_back(binding(s));
-    if (j.contains("laws")) {
-      for (const json& l : j.at("laws")) m.laws.push_back(law(l));
-    }
-  } catch (const ManifestError&) {
-    throw;
-  } catch (const std::exception& e) {  // nlohmann's parse, type and key errors, and ours
+    j = json::parse(text);
+  } catch (const std::exception& e) {  // nlohmann's parse errors: not JSON, or numbers beyond a double
     throw ManifestError(path + ": error: not a signal manifest: " + e.what() + "\n");
   }
+  auto refuse = [&](const std::string& what) { throw ManifestError(path + ": error: " + what + "\n"); };
+  if (!j.is_object()) refuse("not a signal manifest: a JSON object, not " + shown(j));
+  // First: a newer format may have changed whatever follows. Absent: written before it existed.
+  if (j.contains("format_version")) {
+    const json& v = j.at("format_version");
+    const std::optional<long long> version = whole_number(v, 1, std::numeric_limits<int>::max());
+    if (!version) {
+      refuse("format_version must be a whole number from 1 to " + std::to_string(kManifestFormatVersion) +
+             " (the formats this runtime reads), not " + shown(v));
+    }
+    m.format_version = static_cast<int>(*version);
+  }
+  if (m.format_version > kManifestFormatVersion) {
+    refuse("the manifest's format_version is " + std::to_string(m.format_version) +
+           " but this runtime reads up to " + std::to_string(kManifestFormatVersion) +
+           " (a newer openplx2mjcf wrote it: use the runtime of that version)");
+  }
+  try {
+    m.model = str(j, "model");
+    if (j.contains("prefix")) m.prefix = str(j, "prefix");
+    if (j.contains("fingerprint")) m.fingerprint = str(j, "fingerprint");
+    if (j.contains("timestep")) m.timestep = real(j, "timestep");
+    if (j.contains("mujoco")) m.mujoco = str(j, "mujoco");
+    if (j.contains("timestep_dependent")) m.timestep_dependent = flag(j, "timestep_dependent");
+    if (j.contains("timestep_choices")) m.timestep_choices = texts(j, "timestep_choices");
+    array(j, "signals");
+    if (j.contains("laws")) array(j, "laws");
+  } catch (const std::invalid_argument& e) {
+    refuse(std::string("not a signal manifest: ") + e.what());
+  }
+  // Each signal and law named in its errors: by its path, or by its place when the path is what is wrong.
+  std::unordered_set<std::string> paths;
+  for (const json& s : j.at("signals")) {
+    std::string where = "signal " + std::to_string(m.signals.size() + 1);
+    try {
+      if (!s.is_object()) throw std::invalid_argument("must be an object, not " + shown(s));
+      const std::string signal_path = str(s, "path");
+      if (signal_path.empty()) throw std::invalid_argument("`path` is empty");
+      where = "signal `" + signal_path + "`";
+      // The bridge finds signals by path: a second one of a path could never be reached.
+      if (!paths.insert(signal_path).second) refuse(where + " is listed twice");
+      m.signals.push_back(binding(s));
+      m.signals.back().path = signal_path;
+    } catch (const std::invalid_argument& e) {
+      refuse("not a signal manifest: " + where + ": " + e.what());
+    }
+  }
+  if (j.contains("laws")) {
+    for (const json& l : j.at("laws")) {
+      std::string where = "law " + std::to_string(m.laws.size() + 1);
+      try {
+        if (!l.is_object()) throw std::invalid_argument("must be an object, not " + shown(l));
+        const std::string law_path = str(l, "path");
+        where = "law of `" + law_path + "`";
+        m.laws.push_back(law(l));
+        m.laws.back().path = law_path;
+      } catch (const std::invalid_argument& e) {
+        refuse("not a signal manifest: " + where + ": " + e.what());
+      }
+    }
+  }
   if (!(m.timestep >= 0 && std::isfinite(m.timestep)))
-    throw ManifestError(path + ": error: its timestep is not a positive number of seconds\n");
+    refuse("its timestep is not a positive number of seconds");
   for (const SignalBinding& b : m.signals) {
     std::string problem = binding_problem(b);
     if (problem.empty()) problem = noise_problem(b);
-    if (!problem.empty()) throw ManifestError(path + ": error: signal `" + b.path + "`: " + problem + "\n");
+    if (!problem.empty()) refuse("signal `" + b.path + "`: " + problem);
   }
   for (const RuntimeLaw& l : m.laws) {
     if (const std::string problem = law_problem(l); !problem.empty())
-      throw ManifestError(path + ": error: law of `" + l.path + "`: " + problem + "\n");
+      refuse("law of `" + l.path + "`: " + problem);
   }
   return m;
 }

@@ -30,8 +30,10 @@ class ManifestError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Throws ManifestError("PATH: error: ...") when the file cannot be read or is not a manifest, when its
-// format_version is newer than this runtime reads (kManifestFormatVersion), and when a
+// Throws ManifestError("PATH: error: ...") when the file cannot be read or is not a manifest (a field
+// missing or of the wrong JSON type, named with its signal's or law's path), when its format_version is no
+// whole number from 1 to what this runtime reads (kManifestFormatVersion), when one signal path is listed
+// twice, when a signal's value kind is not one its quantity gives or takes, and when a
 // binding or law is inconsistent in itself (a quantity on the wrong kind of element or value, no names
 // where the runtime needs one, a non-finite number where it computes with it, a torque converter without
 // its two actuators...), naming the signal or law.

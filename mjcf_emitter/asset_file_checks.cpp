@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -340,8 +341,13 @@ std::string png_file_problem(const std::string& path) {
       return "its " + type + " chunk fails its checksum: the file is damaged";
     if (!header) {
       if (type != "IHDR" || length != 13) return "it does not begin with an image header (IHDR)";
-      if (big_endian32(bytes, at + 8) == 0 || big_endian32(bytes, at + 12) == 0)
-        return "its image has no pixels";
+      const uint64_t width = big_endian32(bytes, at + 8), height = big_endian32(bytes, at + 12);
+      if (width == 0 || height == 0) return "its image has no pixels";
+      // MuJoCo 2.2.2 keeps a texture as 3 bytes a pixel and counts them in an int (mjModel::ntexdata):
+      // larger, it would first try to decode gigabytes and then overflow the count.
+      if (3 * width * height > static_cast<uint64_t>(std::numeric_limits<int>::max()))
+        return "its header claims " + std::to_string(width) + " x " + std::to_string(height) +
+               " pixels, more than MuJoCo keeps in a texture (3 bytes a pixel, fewer than 2^31 bytes)";
       header = true;
     }
     data = data || type == "IDAT";

@@ -224,6 +224,7 @@ void simulate(const MuJoCoLibrary& mj, MuJoCoMessages& messages, const mjModel* 
       break;
     }
     ++result.steps;
+    if (options.progress) options.progress(d->time, options.simulate_time);
     const bool went_back = d->time < t + 0.5 * h;  // mj_resetData: time 0, then the step's own h
     bool wrong = false;
     for (int w : before.risen(d, went_back)) {

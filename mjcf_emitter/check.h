@@ -7,6 +7,7 @@
 // concerns. MuJoCo's own messages are kept (MuJoCoMessages), never written to MUJOCO_LOG.TXT.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct CheckOptions {
   double tolerance = 1e-9;      // pose error allowed, m and rad
   double simulate_time = 1.0;   // s simulated from the initial keyframe; 0: none
   double emitted_timestep = 0;  // the time step the model was emitted for (the hint compares it); 0: unknown
+  // Called after each simulated step with the time simulated and simulate_time (openplx2mjcf shows it on a
+  // terminal); may be empty.
+  std::function<void(double simulated, double total)> progress;
 };
 
 // Two bodies whose collision geometry overlaps at the initial state (MuJoCo has already left out parent and

@@ -16,7 +16,8 @@ namespace {
 struct WeldSum {
   double mass = 0;
   std::array<double, 3> moments{};
-  bool known = true;  // false when a body leaves its mass to MuJoCo (no <inertial>)
+  bool mass_known = true;  // false when a body leaves its mass to MuJoCo (no <inertial>)
+  bool known = true;       // the moments too: false also for a fullinertia, whose moments MuJoCo finds
 };
 
 bool has_joint(const Element& body) {
@@ -32,12 +33,18 @@ void add_weld_group(const Element& body, WeldSum& sum) {
     if (c->name() == "inertial") inertial = c.get();
   const std::optional<Eigen::Vector3d> moments =
       inertial ? attribute_vector(*inertial, "diaginertia") : std::nullopt;
-  if (!moments) {
-    sum.known = false;  // geoms or a fullinertia (written only when its moments pass, bodies.cpp)
+  if (!inertial) {
+    sum.mass_known = sum.known = false;  // geoms: MuJoCo sums them
   } else {
+    // A fullinertia's moments pass (bodies.cpp writes one only then), but its mass still counts: a
+    // 1e-308 kg body with a written tensor was once written and refused by MuJoCo.
     const std::vector<double> mass = attribute_numbers(*inertial, "mass");
     sum.mass += mass.empty() ? 0.0 : mass[0];
-    for (int k = 0; k < 3; ++k) sum.moments[k] += (*moments)[k];
+    if (!moments) {
+      sum.known = false;
+    } else {
+      for (int k = 0; k < 3; ++k) sum.moments[k] += (*moments)[k];
+    }
   }
   for (const auto& c : body.children())
     if (c->name() == "body" && !has_joint(*c)) add_weld_group(*c, sum);
@@ -50,12 +57,13 @@ void Lowering::enforce_moving_body_inertia() {
     if (!has_joint(*body)) continue;
     WeldSum sum;
     add_weld_group(*body, sum);
-    if (!sum.known || (sum.mass >= mjMINVAL && sum.moments[0] >= mjMINVAL && sum.moments[1] >= mjMINVAL &&
-                       sum.moments[2] >= mjMINVAL))
+    const bool light = sum.mass_known && sum.mass < mjMINVAL;
+    if (!light && (!sum.known || (sum.mass >= mjMINVAL && sum.moments[0] >= mjMINVAL &&
+                                  sum.moments[1] >= mjMINVAL && sum.moments[2] >= mjMINVAL)))
       continue;
     Element* inertial = body->child("inertial");
     const sn::FrameNode& n = system_.nodes[static_cast<size_t>(node)];
-    if (sum.mass < mjMINVAL) {
+    if (light) {
       sink_.report(fe::DiagCode::MjcfBadAsset, n.where,
                    "`" + n.path + "` moves but its mass (" + number(sum.mass) +
                        " kg with the bodies fixed to it) is below MuJoCo's smallest, " + number(mjMINVAL) +

@@ -95,6 +95,18 @@ LoadedModel load_model(const std::string& path, const std::string& model,
     fe::print_diagnostics(text, sources, sink.diagnostics());
     throw LoadError(text.str().empty() ? path + ": error: the model could not be loaded\n" : text.str());
   }
+  for (size_t id = 0; id < sources.size(); ++id) {
+    const std::string& file = sources.file(static_cast<fe::FileId>(id)).path();
+    if (!file.empty() && file.front() != '<') loaded.files_read.push_back(file);  // not "<builtin>"
+  }
+  for (const mjcf::ConvertedMesh& mesh : emitted.converted_meshes) loaded.files_read.push_back(mesh.source);
+  std::vector<const mjcf::Element*> elements{&emitted.document};
+  while (!elements.empty()) {  // the assets MuJoCo reads itself (absolute paths)
+    const mjcf::Element* e = elements.back();
+    elements.pop_back();
+    if (const std::string* file = e->get("file")) loaded.files_read.push_back(*file);
+    for (const auto& child : e->children()) elements.push_back(child.get());
+  }
   loaded.xml = emitted.document.to_string();
   loaded.signals = std::move(emitted.signals);
   loaded.laws = std::move(emitted.laws);

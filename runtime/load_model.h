@@ -18,7 +18,8 @@ struct LoadedModel {
   std::string xml;
   std::vector<mjcf::SignalBinding> signals;
   std::vector<mjcf::RuntimeLaw> laws;
-  std::vector<std::string> warnings;  // printed diagnostics, one each
+  std::vector<std::string> warnings;    // printed diagnostics, one each
+  std::vector<std::string> files_read;  // every file read from disk: the model, imports, bundles, meshes
 };
 
 // Throws LoadError with the printed diagnostics when the model has errors or MuJoCo rejects the MJCF.

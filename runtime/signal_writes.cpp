@@ -14,6 +14,16 @@ namespace openplx::runtime {
 using mjcf::MjObject;
 using mjcf::Quantity;
 
+namespace {
+
+// The vector inputs written straight into the motion of a body.
+bool is_motion_vector(Quantity q) {
+  return q == Quantity::KinematicLinearVelocity || q == Quantity::KinematicAngularVelocity ||
+         q == Quantity::FreeLinearVelocity || q == Quantity::FreeAngularVelocity || q == Quantity::BodyTorque;
+}
+
+}  // namespace
+
 void SimulationState::write(int index, const double* values, int count, ValueType given) {
   ResolvedSignal& s = signals[static_cast<size_t>(index)];
   const mjcf::SignalBinding& b = s.binding;
@@ -62,6 +72,17 @@ void SimulationState::write(int index, const double* values, int count, ValueTyp
            ": clamped to " + mjcf::number(clamped) + " (said once per input)\n");
     }
     values = &clamped;
+  }
+  if (count > 1 && is_motion_vector(b.quantity)) {
+    // A velocity or torque beyond mjMAXVAL is one MuJoCo flags as diverged and resets (a velocity of 1e308
+    // read back as {1e308, nan, nan}); clamping a component would turn the vector, so it is refused.
+    for (int i = 0; i < count; ++i) {
+      if (std::abs(values[i]) > mjMAXVAL) {
+        throw SignalError("input `" + s.info.name + "` got " + mjcf::number(values[i]) +
+                          ", beyond the values MuJoCo takes (magnitude up to " + mjcf::number(mjMAXVAL) +
+                          ")");
+      }
+    }
   }
   const int id = s.ids.empty() ? -1 : s.ids.front();
   switch (b.quantity) {

@@ -54,6 +54,7 @@ Simulation Simulation::load(const std::string& path, const LoadOptions& options)
   state->root = std::move(loaded.root_name);
   state->xml = std::move(loaded.xml);
   state->warnings = std::move(loaded.warnings);
+  state->files_read = std::move(loaded.files_read);
   state->resolve(std::move(loaded.signals), loaded.laws);
   if (!state->row_problems.empty()) {
     std::string text;
@@ -127,6 +128,10 @@ const std::string& Simulation::root_model() const {
 const std::string& Simulation::mjcf() const {
   return state_->xml;
 }
+const std::vector<std::string>& Simulation::files_read() const {
+  return state_->files_read;
+}
+
 const std::vector<std::string>& Simulation::warnings() const {
   return state_->warnings;
 }

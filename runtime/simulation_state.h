@@ -52,10 +52,11 @@ struct SimulationState final : MessageSink {
   bool registered = false;  // in the bridges' registry (one bridge per mjData and prefix)
   std::string root;
   std::string xml;
-  std::vector<std::string> warnings;  // the transpilation's, then the run's (warn)
-  std::string source;                 // the model file or manifest, first in messages
-  std::string prefix;                 // the prefix of its MuJoCo names, stripped in messages
-  double emitted_timestep = 0;        // the time step the model was emitted for, 0: unknown
+  std::vector<std::string> warnings;    // the transpilation's, then the run's (warn)
+  std::vector<std::string> files_read;  // by the transpilation (Simulation::files_read)
+  std::string source;                   // the model file or manifest, first in messages
+  std::string prefix;                   // the prefix of its MuJoCo names, stripped in messages
+  double emitted_timestep = 0;          // the time step the model was emitted for, 0: unknown
   OnInstability on_instability = OnInstability::Throw;
   SensorNoiseOptions noise;             // sensor noise added to outputs when read (sensor_noise.h)
   std::vector<std::string> mismatches;  // bindings resolve refused: "`path`: why" (a bridge refuses them)

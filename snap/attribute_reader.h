@@ -67,6 +67,8 @@ class AttributeReader {
   // Reports "`path.name` is VALUE; RULE" unless `valid`; returns `valid`.
   bool require(bool valid, frontend::ObjectId object, std::string_view name, double value,
                std::string_view rule);
+  // Reports "`path.name` WHAT" where it was written, for a value no number describes (an empty list).
+  void refuse(frontend::ObjectId object, std::string_view name, std::string_view what);
   // The same for each component of a Math.Vec3 (x, y, z) or Math.Quat (also w) attribute: all finite.
   bool require_finite_components(frontend::ObjectId vector, std::string_view rule);
 

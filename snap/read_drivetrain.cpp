@@ -146,9 +146,19 @@ void read_drive_parameters(AttributeReader& in, fe::ObjectId id, DriveCoupling& 
       c.max_effort = in.real(id, "max_effort", kInf);
       if (in.graph().at(id).has("rpm_torque_list")) {
         c.torque_curve = pairs(in, id, "rpm_torque_list", "rpm", "torque");
+        // An empty table gives no torque at any throttle: a silent dead engine.
+        if (c.torque_curve.empty())
+          in.refuse(id, "rpm_torque_list", "is empty; an engine's torque table has at least one point");
         c.idle_rpm = in.real(id, "idle_rpm", 0.0);
       } else {
+        // The curve is built from these speeds; 0 or less describes no engine (a curve of 1 rev/min).
+        for (const char* rated : {"max_torque_RPM", "max_power_RPM", "max_RPM"}) {
+          const double v = in.real(id, rated, 1.0);
+          in.require(std::isfinite(v) && v > 0, id, rated, v, "an engine's rated speed is a positive RPM");
+        }
         c.idle_rpm = in.real(id, "idle_RPM", 0.0);
+        in.require(std::isfinite(c.idle_rpm) && c.idle_rpm >= 0, id, "idle_RPM", c.idle_rpm,
+                   "an engine's idle speed is 0 or a positive RPM");
         c.crank_inertia = in.real(id, "crank_shaft_inertia", 0.0);
         c.torque_curve =
             mean_value_torque_curve(in.real(id, "max_torque"), in.real(id, "max_torque_RPM"),

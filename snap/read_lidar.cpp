@@ -26,14 +26,19 @@ std::vector<Eigen::Vector3d> sweep(AttributeReader& in, fe::ObjectId source) {
     // resolution of millions from allocating them first.
     constexpr double kMaxAxisRays = 4096;
     const double given = in.real(source, resolution, 1);
+    // A resolution is a ray count: none or fewer is no sweep, and quietly casting one ray would hide it.
+    in.require(std::isfinite(given) && given >= 1, source, resolution, given,
+               "a lidar's resolution is a ray count, 1 or more");
     const int n = std::isfinite(given) ? static_cast<int>(std::clamp(given, 1.0, kMaxAxisRays)) : 1;
     std::vector<double> out;
     for (int k = 0; k < n; ++k) out.push_back(n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * k / (n - 1));
     return out;
   };
   std::vector<Eigen::Vector3d> rays;
-  for (double elevation : angles("vertical_fov", "vertical_resolution")) {
-    for (double azimuth : angles("horizontal_fov", "horizontal_resolution")) {
+  const std::vector<double> elevations = angles("vertical_fov", "vertical_resolution");
+  const std::vector<double> azimuths = angles("horizontal_fov", "horizontal_resolution");  // read once
+  for (double elevation : elevations) {
+    for (double azimuth : azimuths) {
       rays.emplace_back(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
                         std::sin(elevation));
     }

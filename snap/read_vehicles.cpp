@@ -1,14 +1,24 @@
 #include "snap/read_vehicles.h"
 
+#include <cmath>
+
 namespace openplx::snap {
 
 void read_suspension(AttributeReader& in, const frontend::ModelInfo* steering_trait, frontend::ObjectId id,
                      Mate& mate) {
   mate.type = MateType::Suspension;
-  if (const frontend::ObjectId spring = in.object(id, "spring_constant"); spring != frontend::kNoObject)
+  // Written to the travel joint's stiffness and damping, which MuJoCo takes as given: a negative one pushes
+  // the wheel away and gains energy, an infinite one is no number.
+  if (const frontend::ObjectId spring = in.object(id, "spring_constant"); spring != frontend::kNoObject) {
     mate.travel_stiffness = in.real(spring, "stiffness");
-  if (const frontend::ObjectId damper = in.object(id, "spring_damping"); damper != frontend::kNoObject)
+    in.require(std::isfinite(mate.travel_stiffness) && mate.travel_stiffness >= 0, spring, "stiffness",
+               mate.travel_stiffness, "a suspension's stiffness is a finite number, 0 or positive");
+  }
+  if (const frontend::ObjectId damper = in.object(id, "spring_damping"); damper != frontend::kNoObject) {
     mate.travel_damping = in.real(damper, "damping_constant");
+    in.require(std::isfinite(mate.travel_damping) && mate.travel_damping >= 0, damper, "damping_constant",
+               mate.travel_damping, "a suspension's damping is a finite number, 0 or positive");
+  }
   const frontend::ObjectId suspension = in.graph().at(id).owner;
   if (suspension == frontend::kNoObject) return;
   mate.steerable = steering_trait && in.graph().at(suspension).type->is_subtype_of(steering_trait);

@@ -12,8 +12,12 @@ void SystemBuilder::read_body(fe::ObjectId id, BodyProperties& body) {
     body.dynamic = d->bool_value;
   if (fe::ObjectId inertia = object(id, "inertia"); inertia != fe::kNoObject) {
     body.mass = real(inertia, "mass");
-    in_.require(std::isfinite(body.mass) && body.mass >= 0, inertia, "mass", body.mass,
-                "a mass is 0 (computed from the geometries) or a positive number of kg");
+    // Above 1e307 kg MuJoCo 2.2.2 loads the body but its weight under Earth's gravity overflows (NaN from
+    // the first step; measured with mj_loadXML and mj_step: 1.8e307 steps, 2e307 does not).
+    constexpr double kMaxMass = 1e307;
+    in_.require(std::isfinite(body.mass) && body.mass >= 0 && body.mass <= kMaxMass, inertia, "mass",
+                body.mass,
+                "a mass is 0 (computed from the geometries) or a positive number of kg, at most 1e307");
     if (std::optional<Eigen::Matrix3d> tensor = inertia_tensor(inertia)) {
       body.inertia = *tensor;
       check_inertia_tensor(inertia, *tensor);

@@ -26,6 +26,12 @@ bool AttributeReader::require(bool valid, fe::ObjectId object, std::string_view 
   return false;
 }
 
+void AttributeReader::refuse(fe::ObjectId object, std::string_view name, std::string_view what) {
+  if (!sink_) return;
+  const WrittenValue written = written_value(*this, object, name);
+  sink_->report(fe::DiagCode::InvalidValue, written.where, "`" + written.name + "` " + std::string(what));
+}
+
 bool AttributeReader::require_finite_components(fe::ObjectId vector, std::string_view rule) {
   bool valid = true;
   for (const char* component : {"x", "y", "z", "w"}) {

@@ -22,6 +22,9 @@ for arg in "$@"; do
 done
 if [[ $tests -eq 1 ]]; then
   packages+=(libgtest-dev libbenchmark-dev clang-format time)
+  # The depfile's readers (tests/tools/depfile_readers_test.cpp: GNU Make and Ninja read it back), and
+  # script(1) for a pseudo-terminal (tests/tools/check_progress_test.cpp).
+  packages+=(make ninja-build bsdutils)
   command -v node >/dev/null || packages+=(nodejs)
   command -v npm >/dev/null || packages+=(npm)
   # A virtual X server and screen grabs for the samples' screenshots in mujoco-simulate (viewer_screenshots).

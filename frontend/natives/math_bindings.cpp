@@ -6,6 +6,7 @@
 #include <string>
 
 #include "frontend/evaluation/evaluator.h"
+#include "frontend/evaluation/value_format.h"
 #include "frontend/natives/builtin_natives.h"
 #include "frontend/natives/math_matrix.h"
 #include "frontend/natives/math_rotation.h"
@@ -152,8 +153,19 @@ void add_quaternions(NativeRegistry& r) {
         [](NativeCall& c, Args a) { return make_vec3(c, quat_rotate(quat(c, a[0]), vec3(c, a[1]))); });
   r.add("Math.Quat.conj", [](NativeCall& c, Args a) { return make_quat(c, quat_conj(quat(c, a[0]))); });
   r.add("Math.Quat.inverse", [](NativeCall& c, Args a) { return make_quat(c, quat_inverse(quat(c, a[0]))); });
-  r.add("Math.Quat.angle_axis",
-        [](NativeCall& c, Args a) { return make_quat(c, quat_angle_axis(a[0].as_real(), vec3(c, a[1]))); });
+  r.add("Math.Quat.angle_axis", [](NativeCall& c, Args a) {
+    const double angle = a[0].as_real();
+    const V3 axis = vec3(c, a[1]);
+    // A turn about no axis is no rotation we could pick; taking the identity would be silently wrong. A zero
+    // angle is the identity whatever the axis.
+    if (angle != 0.0 && axis.cwiseAbs().maxCoeff() == 0.0) {
+      c.evaluator().sink().report(frontend::DiagCode::InvalidValue, c.where(),
+                                  "`Math.Quat.angle_axis` turns " + frontend::format_real(angle) +
+                                      " rad about the zero vector; an axis has a length");
+      return Value::error();
+    }
+    return make_quat(c, quat_angle_axis(angle, axis));
+  });
   r.add("Math.Quat.from_to",
         [](NativeCall& c, Args a) { return make_quat(c, quat_from_to(vec3(c, a[0]), vec3(c, a[1]))); });
   r.add("Math.Quat.normal", [](NativeCall& c, Args a) { return make_quat(c, quat_normal(quat(c, a[0]))); });

@@ -1,6 +1,7 @@
 // Hostile values: numbers nothing can simulate (a negative mass, 1 / 0, an infinite position, a zero
-// quaternion, a negative stiffness or shaft inertia, an infinite gear ratio or brake capacity), tracks MuJoCo
-// cannot allocate, broken mesh and image files and an absurd time step. Each is an error at the user's line
+// quaternion or axis, a negative stiffness or shaft inertia, an infinite gear ratio or brake capacity, a mass
+// whose weight overflows, a lidar of no rays, an engine without a curve), tracks MuJoCo cannot allocate,
+// broken or giant mesh and image files and an absurd time step. Each is an error at the user's line
 // (or a warning saying what was done, for what is only visual), exit 1 or 2, and no output file: never a
 // crash, never a number MuJoCo cannot use.
 #include <mujoco/mujoco.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "mjcf_emitter/xml.h"
+#include "tests/support/car_model.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/tetrahedron_stl.h"
 #include "tools/cli/cli.h"
@@ -146,6 +148,103 @@ TEST_F(Hostile, NegativeSizesDensitiesAndInfiniteConnectorsAreErrors) {
                               "    top is Physics3D.Interactions.MateConnector:\n"
                               "        position: {0, 0, Math.INF}\n")),
                   6, 9, "`Rod.top.position.z` is inf; a connector's position and axes are finite");
+}
+
+TEST_F(Hostile, ARotationAboutTheZeroAxisIsAnErrorAtTheCall) {
+  const std::string turned = "    kinematics.local_transform.rotation: Math.Quat.angle_axis(";
+  expect_error_at(convert(rod("1.0", turned + "1, {0, 0, 0})\n")), 5, 42,
+                  "`Math.Quat.angle_axis` turns 1.0 rad about the zero vector; an axis has a length");
+  // No turn is the identity whatever the axis.
+  const Converted none = convert(rod("1.0", turned + "0, {0, 0, 0})\n"));
+  EXPECT_EQ(none.status, 0) << none.errors;
+}
+
+// MuJoCo loads a body of 1e308 kg, but its weight overflows to NaN at the first step (2e307 kg does too,
+// 1.8e307 kg not); below 1e-15 kg it refuses a moving body, also when its inertia tensor is written.
+TEST_F(Hostile, MassesMuJoCoCannotSimulateAreErrors) {
+  expect_error_at(convert(rod("1e308")), 2, 5, "`Rod.inertia.mass` is 1e+308; a mass is 0");
+  EXPECT_EQ(convert(rod("1e307")).status, 0);
+  expect_error_at(
+      convert(rod("1e-308",
+                  "    inertia.tensor: Physics3D.Bodies.Inertia.symmetric_tensor({1.0, 1.0, 1.0}, 0, "
+                  "0, 0)\n")),
+      7, 5, "mass (1e-308 kg with the bodies fixed to it) is below MuJoCo's smallest", "mjcf-bad-asset");
+}
+
+// A lidar whose resolutions are `horizontal` (line 10) and `vertical` (line 11) rays.
+std::string lidar(const std::string& horizontal, const std::string& vertical) {
+  return "Scene is Physics3D.System:\n"
+         "    mount is Physics3D.Interactions.MateConnector:\n"
+         "        main_axis: {0, 0, 1}\n"
+         "        normal: {1, 0, 0}\n"
+         "    lidar is Sensors.PulsedLidarLogic:\n"
+         "        mate_connector_attachment: mount\n"
+         "        wavelength: 865\n"
+         "        ray_source becomes Sensors.Optics.HorizontalSweepRaySource:\n"
+         "            frequency: 10\n"
+         "            horizontal_resolution: " +
+         horizontal +
+         "\n"
+         "            vertical_resolution: " +
+         vertical +
+         "\n"
+         "            horizontal_fov: {-0.4, 0.4}\n"
+         "            vertical_fov: {-0.1, 0.1}\n";
+}
+
+TEST_F(Hostile, LidarResolutionsOfNoRayAreErrors) {
+  ASSERT_EQ(convert(lidar("5", "2")).status, 0);
+  const Converted c = convert(lidar("-3", "0"));
+  expect_error_at(c, 10, 13,
+                  "`lidar.ray_source.horizontal_resolution` is -3.0; a lidar's resolution is a ray count");
+  expect_error_at(c, 11, 13, "`lidar.ray_source.vertical_resolution` is 0.0; a lidar's resolution");
+  // Reported once, not once per row of rays.
+  const Converted wide = convert(lidar("0", "7"));
+  EXPECT_EQ(wide.errors.find("horizontal_resolution"), wide.errors.rfind("horizontal_resolution` is"))
+      << wide.errors;
+}
+
+// A bench with a shaft and `engine` (its lines from line 5) on it.
+std::string engine_bench(const std::string& engine) {
+  return "Bench is Physics3D.System:\n"
+         "    crank is DriveTrain.Shaft:\n"
+         "        inertia.inertia: 1\n"
+         "    engine is " +
+         engine + "        connectors: [crank.input]\n";
+}
+
+TEST_F(Hostile, EnginesWithoutATorqueCurveAreErrors) {
+  ASSERT_EQ(convert(engine_bench("DriveTrain.EmpiricalEngine:\n")).status, 0);
+  expect_error_at(convert(engine_bench("DriveTrain.EmpiricalEngine:\n        rpm_torque_list: []\n")), 5, 9,
+                  "`engine.rpm_torque_list` is empty; an engine's torque table has at least one point");
+  ASSERT_EQ(convert(engine_bench("DriveTrain.MeanValueEngine:\n")).status, 0);
+  const Converted zero =
+      convert(engine_bench("DriveTrain.MeanValueEngine:\n        max_torque_RPM: 0\n        max_power_RPM: "
+                           "0\n        max_RPM: 0\n"));
+  expect_error_at(zero, 5, 9, "`engine.max_torque_RPM` is 0.0; an engine's rated speed is a positive RPM");
+  expect_error_at(zero, 6, 9, "`engine.max_power_RPM` is 0.0");
+  expect_error_at(zero, 7, 9, "`engine.max_RPM` is 0.0");
+}
+
+// openplx::testing::car() with its suspension line `from` replaced by `to`, and that line's number.
+std::pair<std::string, int> car_with(const std::string& from, const std::string& to) {
+  std::string model = openplx::testing::car(openplx::testing::Car{});
+  const size_t at = model.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at == std::string::npos) return {model, 0};
+  model.replace(at, from.size(), to);
+  return {model,
+          1 + static_cast<int>(std::count(model.begin(), model.begin() + static_cast<long>(at), '\n'))};
+}
+
+TEST_F(Hostile, NegativeSuspensionStiffnessAndDampingAreErrors) {
+  const auto [stiff, stiff_line] = car_with("stiffness: 40000", "stiffness: -20000");
+  expect_error_at(
+      convert(stiff), stiff_line, 5,
+      "`Corner.mate.spring_constant.stiffness` is -20000.0; a suspension's stiffness is a finite number");
+  const auto [damped, damped_line] = car_with("damping_constant: 1500", "damping_constant: -1");
+  expect_error_at(convert(damped), damped_line, 5,
+                  "a suspension's damping is a finite number, 0 or positive");
 }
 
 // A hinged arm with a torsion spring whose stiffness line (line 14) is `stiffness`.
@@ -477,6 +576,49 @@ TEST_F(Hostile, ATextureThatIsNoPngIsLeftOutWithAWarning) {
   mjModel* m = mj_loadXML(path("scene.xml").c_str(), nullptr, error, sizeof(error));
   EXPECT_NE(m, nullptr) << error;
   if (m) mj_deleteModel(m);
+}
+
+// A PNG chunk: length, type, data and its CRC-32 (the PNG specification's, bit by bit).
+std::string png_chunk(const std::string& type, const std::string& data) {
+  auto be32 = [](uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                       static_cast<char>(v)};
+  };
+  uint32_t crc = 0xffffffffu;
+  for (const char byte : type + data) {
+    crc ^= static_cast<unsigned char>(byte);
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return be32(static_cast<uint32_t>(data.size())) + type + data + be32(~crc);
+}
+
+// MuJoCo would decode the image whole before anything else: a header claiming 10^6 x 10^6 pixels is left
+// out with a warning before it tries (checksums right; the pixel data itself is one zlib block of nothing).
+TEST_F(Hostile, ATextureClaimingMorePixelsThanMuJoCoHoldsIsLeftOut) {
+  const std::string million("\x00\x0f\x42\x40", 4);  // 1000000, big-endian
+  const std::string header = million + million + std::string("\x08\x06\x00\x00\x00", 5);  // 8-bit RGBA
+  write_bytes(dir_ / "huge.png", "\x89PNG\r\n\x1a\n" + png_chunk("IHDR", header) +
+                                     png_chunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) +
+                                     png_chunk("IEND", ""));
+  const Converted c = convert(
+      "import @\"huge.png\" as Huge\n"
+      "const Shown is Huge\n"
+      "Scene is Physics3D.System:\n"
+      "    paint is Visuals.Materials.Material with Visuals.Materials.SurfaceFeatures.BaseColor:\n"
+      "        base_color_map: Shown\n"
+      "    body is Physics3D.Bodies.RigidBody:\n"
+      "        inertia.mass: 1\n"
+      "        shape is Physics3D.Geometries.Box:\n"
+      "            size: {1, 1, 1}\n"
+      "        look is Visuals.Geometries.Box:\n"
+      "            size: {1, 1, 1}\n"
+      "            material: paint\n");
+  EXPECT_EQ(c.status, 0) << c.errors;
+  EXPECT_NE(c.errors.find("its header claims 1000000 x 1000000 pixels, more than MuJoCo keeps in a texture"),
+            std::string::npos)
+      << c.errors;
+  EXPECT_NE(c.errors.find("the texture was left out"), std::string::npos) << c.errors;
+  EXPECT_EQ(c.xml.find("<texture"), std::string::npos) << c.xml;
 }
 
 // ------------------------------------------------------------------------------------------ backstop

@@ -97,4 +97,35 @@ TEST(KinematicBody, KinematicallyControlledListMakesBodiesKinematic) {
   EXPECT_LT(position_of(sim, "dropped").z(), -1.0);  // g t^2 / 2 = 1.23 m
 }
 
+// A velocity MuJoCo cannot hold (it read 1e308 back as {1e308, nan, nan}) is refused, naming the input, on a
+// kinematic body and on a free one alike; the bodies keep moving as before.
+TEST(KinematicBody, VelocitiesBeyondWhatMuJoCoTakesAreRefused) {
+  const openplx::testing::ScratchDir dir;
+  rt::Simulation sim = load(dir,
+                            "Block is Physics3D.Bodies.RigidBody:\n"
+                            "    inertia.mass: 1\n"
+                            "    geometry is Physics3D.Geometries.Box:\n"
+                            "        size: {0.2, 0.2, 0.2}\n"
+                            "Scene is Physics3D.System:\n"
+                            "    held is Block:\n"
+                            "        is_dynamic: false\n"
+                            "    free is Block\n");
+  for (const char* name : {"held.linear_velocity_world_input", "free.linear_velocity_world_input",
+                           "free.angular_velocity_world_input"}) {
+    rt::Input input = sim.input(name);
+    try {
+      input.set(Eigen::Vector3d(1e308, 0, 0));
+      ADD_FAILURE() << name << " took 1e308";
+    } catch (const rt::SignalError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("`") + name + "` got 1e+308, beyond"),
+                std::string::npos)
+          << e.what();
+    }
+    input.set(Eigen::Vector3d(1e10, 0, 0));  // MuJoCo's largest sound value is taken
+    input.set(Eigen::Vector3d(0, 0, 0));
+  }
+  sim.advance(0.1);
+  EXPECT_TRUE(sim.output("free.linear_velocity_world_output").vec3().allFinite());
+}
+
 }  // namespace

@@ -18,6 +18,18 @@ bool write_file_atomically(const std::string& path, std::string_view content, st
 
 bool write_file_atomically(const std::string& path, const std::function<void(const PieceWriter&)>& produce,
                            std::string& error) {
+  std::string temporary;
+  if (!write_temporary_file(path, produce, temporary, error)) return false;
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    error = std::string("cannot write: ") + std::strerror(errno);
+    std::remove(temporary.c_str());
+    return false;
+  }
+  return true;
+}
+
+bool write_temporary_file(const std::string& path, const std::function<void(const PieceWriter&)>& produce,
+                          std::string& temporary, std::string& error) {
   std::string pattern = path + ".tmpXXXXXX";
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
@@ -39,19 +51,15 @@ bool write_file_atomically(const std::string& path, const std::function<void(con
       written += static_cast<size_t>(n);
     }
   });
+  // mkstemp creates 0600; an output file should get the usual permissions.
+  if (!failure) ::fchmod(fd, 0644);
+  if (::close(fd) != 0 && !failure) failure = errno;
   if (failure) {
     error = std::string("cannot write: ") + std::strerror(failure);
-    ::close(fd);
     std::remove(name.data());
     return false;
   }
-  // mkstemp creates 0600; an output file should get the usual permissions.
-  ::fchmod(fd, 0644);
-  if (::close(fd) != 0 || std::rename(name.data(), path.c_str()) != 0) {
-    error = std::string("cannot write: ") + std::strerror(errno);
-    std::remove(name.data());
-    return false;
-  }
+  temporary = name.data();
   return true;
 }
 

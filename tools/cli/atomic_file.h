@@ -14,4 +14,9 @@ using PieceWriter = std::function<void(std::string_view)>;
 bool write_file_atomically(const std::string& path, const std::function<void(const PieceWriter&)>& produce,
                            std::string& error);
 
+// The text written to a new temporary file beside `path` (named `path` + ".tmp" + 6 characters), left there
+// for the caller to rename or remove: `temporary` gets its name. On failure nothing is left.
+bool write_temporary_file(const std::string& path, const std::function<void(const PieceWriter&)>& produce,
+                          std::string& temporary, std::string& error);
+
 }  // namespace openplx::cli

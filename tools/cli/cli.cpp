@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -35,6 +36,7 @@
 #include "tools/cli/crash_cleanup.h"
 #include "tools/cli/depfile.h"
 #include "tools/cli/memory/conversion_memory.h"
+#include "tools/cli/output_set.h"
 
 #ifndef OPENPLX_VERSION
 #define OPENPLX_VERSION "0.0.0"
@@ -70,6 +72,46 @@ bool take_value(const std::vector<std::string>& args, size_t& i, std::string_vie
     }
   }
   return true;
+}
+
+// Why `prefix` cannot begin MuJoCo names ("" when it can): they are written into XML attributes and the
+// manifest's JSON strings, and neither carries control characters (XML 1.0 cannot hold most of them at all)
+// or bytes that are not UTF-8. Printable characters, unicode letters among them, are escaped where needed.
+std::string prefix_problem(const std::string& prefix) {
+  auto hex = [](unsigned value, int digits) {
+    char text[16];
+    std::snprintf(text, sizeof(text), "%0*X", digits, value);
+    return std::string(text);
+  };
+  for (size_t at = 0; at < prefix.size();) {
+    const auto lead = static_cast<unsigned char>(prefix[at]);
+    // The sequence's length and its smallest code point (shorter forms are not UTF-8).
+    const size_t length = lead < 0x80           ? 1
+                          : (lead >> 5) == 0x6  ? 2
+                          : (lead >> 4) == 0xE  ? 3
+                          : (lead >> 3) == 0x1E ? 4
+                                                : 0;
+    unsigned code = length == 1   ? lead
+                    : length == 2 ? lead & 0x1Fu
+                    : length == 3 ? lead & 0x0Fu
+                                  : lead & 0x07u;
+    bool utf8 = length > 0 && at + length <= prefix.size();
+    for (size_t k = 1; utf8 && k < length; ++k) {
+      const auto next = static_cast<unsigned char>(prefix[at + k]);
+      utf8 = (next & 0xC0) == 0x80;
+      code = code << 6 | (next & 0x3Fu);
+    }
+    const unsigned least = length == 2 ? 0x80 : length == 3 ? 0x800 : length == 4 ? 0x10000 : 0;
+    if (!utf8 || code < least || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF))
+      return "holds byte 0x" + hex(lead, 2) + " (at " + std::to_string(at) + "), which is not UTF-8 text";
+    if (code < 0x20 || (code >= 0x7F && code <= 0x9F) || code == 0xFFFE || code == 0xFFFF) {
+      return "holds the character U+" + hex(code, 4) + " (at byte " + std::to_string(at) +
+             "), which is no printable character: MuJoCo names go into XML and JSON, which carry printable "
+             "characters only";
+    }
+    at += length;
+  }
+  return "";
 }
 
 bool write_mesh_files(const std::string& output, const std::vector<mjcf::MeshFile>& files,
@@ -126,6 +168,40 @@ class CheckFiles {
   std::optional<CrashCleanup> crash_cleanup_;
 };
 
+bool progress_on_terminal = false;  // show_progress_on_terminal(): stderr is a terminal someone watches
+
+// --check's simulation, told on one line rewritten in place ("\r") at most four times a second, for a person
+// at a terminal: a long --check-time can take minutes. Nothing at all in a pipe or a file, where the line
+// would be noise, and nothing for a run shorter than a quarter of a second. The line is blanked at the end
+// so that the diagnostics start on a clean one.
+class CheckProgress {
+ public:
+  explicit CheckProgress(std::ostream& err) : err_(err) {}
+  ~CheckProgress() {
+    if (width_) err_ << '\r' << std::string(width_, ' ') << '\r' << std::flush;
+  }
+  CheckProgress(const CheckProgress&) = delete;
+  CheckProgress& operator=(const CheckProgress&) = delete;
+
+  bool shown() const { return progress_on_terminal; }
+  void show(double done, double total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(250)) return;
+    last_ = now;
+    char line[96];
+    const int n = std::snprintf(line, sizeof line, "--check: simulated %.1f of %g s", done, total);
+    if (n <= 0) return;
+    const size_t width = std::min(static_cast<size_t>(n), sizeof line - 1);
+    err_ << '\r' << line << std::string(width_ > width ? width_ - width : 0, ' ') << std::flush;
+    width_ = std::max(width_, width);
+  }
+
+ private:
+  std::ostream& err_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  size_t width_ = 0;  // the longest line shown, 0: none
+};
+
 // --check: the emitted XML loaded by MuJoCo itself must put every body where SNAP did, start with no
 // collision geometry overlapping, and run for --check-time seconds from its initial state without MuJoCo
 // finding it unstable. Findings land at the joint's or body's declaration, else at the root model's. What
@@ -134,7 +210,7 @@ class CheckFiles {
 void check(const CliOptions& options, const std::string& xml, mjcf::Element& document,
            std::vector<mjcf::MeshFile>& mesh_files, const mjcf::EmitOptions& emit_options,
            const snap::ResolvedSystem& system, const snap::SnapResult& assembled,
-           const fe::Evaluation& evaluation, fe::DiagnosticSink& sink) {
+           const fe::Evaluation& evaluation, fe::DiagnosticSink& sink, std::ostream& err) {
   namespace fs = std::filesystem;
   // Beside the output (so relative mesh paths resolve), else in the temporary folder.
   CheckFiles files(emit_options.output_dir.empty() ? fs::temp_directory_path()
@@ -166,6 +242,9 @@ void check(const CliOptions& options, const std::string& xml, mjcf::Element& doc
   mjcf::CheckOptions check_options;
   check_options.simulate_time = options.check_time;
   check_options.emitted_timestep = options.timestep;
+  CheckProgress progress(err);
+  if (progress.shown())
+    check_options.progress = [&](double done, double total) { progress.show(done, total); };
   mjcf::CheckResult result = mjcf::check_mjcf(files.xml(), system, assembled, options.prefix,
                                               evaluation.evaluator->root_name(), check_options);
   if (!result.loaded) {
@@ -260,20 +339,6 @@ void remove_written(const std::vector<std::filesystem::path>& written) {
   }
 }
 
-bool write_manifest(const Converted& converted, const std::string& path, std::string& error) {
-  return write_file_atomically(
-      path,
-      [&](const PieceWriter& write) {
-        // The fingerprint lets a SignalBridge refuse a model this manifest was not written for.
-        const mjcf::ManifestModel model{
-            mjcf::model_fingerprint(converted.emitted->document, converted.prefix).text(), converted.timestep,
-            converted.mujoco, mjcf::timestep_choices(converted.emitted->document, converted.emitted->laws)};
-        mjcf::write_manifest_json(converted.model_name, converted.prefix, converted.emitted->signals,
-                                  converted.emitted->laws, model, write);
-      },
-      error);
-}
-
 // The whole conversion: loads the file with its bundles, picks the root model, evaluates it, resolves the
 // system, assembles it (SNAP) and emits the MJCF (and --check's run, --dump's text). False when the file
 // cannot be read.
@@ -328,8 +393,9 @@ bool convert(const CliOptions& options, fe::SourceManager& sources, fe::Diagnost
   mjcf::Emitted emitted = mjcf::emit_mjcf(system, emit_options, sink);
   timer.lap("emit");
   if (sink.has_errors()) return true;
-  // What the MJCF reads, taken while converted meshes are inline: their sources are the files read.
-  if (options.depfile) {
+  // What the MJCF reads, taken while converted meshes are inline: their sources are the files read (for
+  // --depfile, and so that no output replaces one of them).
+  if (to_file) {
     converted.asset_inputs = files_the_mjcf_reads(emitted.document, emit_options.output_dir);
     for (const mjcf::ConvertedMesh& mesh : emitted.converted_meshes)
       converted.asset_inputs.push_back(fs::absolute(mesh.source).lexically_normal().string());
@@ -342,7 +408,7 @@ bool convert(const CliOptions& options, fe::SourceManager& sources, fe::Diagnost
   timer.lap("print xml");
   if (options.check)
     check(options, xml, emitted.document, converted.mesh_files, emit_options, system, assembled, evaluation,
-          sink);
+          sink, err);
   if (!options.output) return true;  // without -o the model is only checked
   if (options.pose) {
     mjcf::place_model(emitted.document, *options.pose);
@@ -359,10 +425,72 @@ bool convert(const CliOptions& options, fe::SourceManager& sources, fe::Diagnost
   return true;
 }
 
+// Every file of a run with -o FILE as one set (output_set.h): none of them a file the run read or another
+// of them, each written to a temporary first and all renamed only when every one was written. Reports at the
+// output concerned and returns false when nothing was written.
+bool write_outputs(const CliOptions& options, const fe::SourceManager& sources, const Converted& converted,
+                   const std::string& dump, std::ostream& err) {
+  namespace fs = std::filesystem;
+  const std::string& output = *options.output;
+  auto fail = [&](const std::string& where, const std::string& message) {
+    err << where << ": error: " << message << " [" << fe::code_name(fe::DiagCode::IoError) << "]\n";
+    return false;
+  };
+  std::vector<std::string> read = source_files(sources);
+  read.insert(read.end(), converted.asset_inputs.begin(), converted.asset_inputs.end());
+  read.push_back(fs::absolute(options.input).lexically_normal().string());
+  const fs::path dir = fs::absolute(output).parent_path();
+  std::vector<NamedOutput> outputs{{output, "-o"}};
+  if (converted.emitted) outputs.push_back({manifest_path(output), "the signal manifest"});
+  if (!converted.mesh_files.empty())
+    outputs.push_back({(dir / fs::path(converted.mesh_files.front().path).parent_path()).string(),
+                       "the converted meshes' folder"});
+  for (const mjcf::MeshFile& file : converted.mesh_files)
+    outputs.push_back({(dir / file.path).string(), "a converted mesh"});
+  if (options.depfile) outputs.push_back({*options.depfile, "--depfile"});
+  std::string bad;
+  if (const std::string clash = outputs_clash(outputs, read, bad); !clash.empty()) return fail(bad, clash);
+  std::string depfile, error;
+  if (options.depfile && !depfile_text(output, read, depfile, error)) return fail(*options.depfile, error);
+
+  OutputSet set;
+  // Meshes first and the MJCF after them: the renames go in this order, so the MJCF never names a file not
+  // yet there.
+  for (const mjcf::MeshFile& file : converted.mesh_files) {
+    const fs::path path = dir / file.path;
+    if (!set.folder(path.parent_path(), error)) return fail(path.parent_path().string(), error);
+    if (!set.stage(path, file.bytes, error)) return fail(path.string(), error);
+  }
+  if (!set.stage(output, converted.xml.empty() ? dump : converted.xml, error)) return fail(output, error);
+  if (converted.emitted) {
+    const std::string manifest = manifest_path(output);
+    if (!set.stage(
+            manifest,
+            [&](const PieceWriter& write) {
+              // The fingerprint lets a SignalBridge refuse a model this manifest was not written for.
+              const mjcf::ManifestModel model{
+                  mjcf::model_fingerprint(converted.emitted->document, converted.prefix).text(),
+                  converted.timestep, converted.mujoco,
+                  mjcf::timestep_choices(converted.emitted->document, converted.emitted->laws)};
+              mjcf::write_manifest_json(converted.model_name, converted.prefix, converted.emitted->signals,
+                                        converted.emitted->laws, model, write);
+            },
+            error))
+      return fail(manifest, error);
+  }
+  if (options.depfile && !set.stage(*options.depfile, depfile, error)) return fail(*options.depfile, error);
+  if (!set.commit(error)) return fail(output, error);
+  return true;
+}
+
 }  // namespace
 
 void end_process_after_run() {
   ending_after_run = true;
+}
+
+void show_progress_on_terminal() {
+  progress_on_terminal = ::isatty(STDERR_FILENO) == 1;
 }
 
 std::string manifest_path(const std::string& output) {
@@ -386,7 +514,8 @@ std::string usage() {
          "intermediate form instead.\n"
          "\n"
          "  -o, --output OUT  write the MJCF to OUT and the manifest to OUT.signals.json ('.xml' replaced);\n"
-         "                 '-' writes the MJCF to stdout and no manifest. Default: nothing is written\n"
+         "                 '-' writes the MJCF to stdout and no manifest. Default: nothing is written.\n"
+         "                 All outputs are written or none, and never over a file the run read\n"
          "  --model NAME   the root model (default: the last model in FILE)\n"
          "  -B, --bundle-path DIR  an extra bundle directory (repeatable)\n"
          "  --no-default-bundles  only the bundles of -B and OPENPLX_BUNDLE_PATH (e.g. an AGX "
@@ -422,7 +551,8 @@ std::string usage() {
          "                 Gazebo show them; a note names each file whose <up_axis> is not Z_UP)\n"
          "  --depfile DEP  with -o OUT: write DEP, a Make-style dependency file naming every file read\n"
          "                 (the model, OpenPLX files and bundles, URDFs, meshes, textures), for build\n"
-         "                 systems (CMake's openplx2mjcf_add_model uses it)\n"
+         "                 systems (CMake's openplx2mjcf_add_model uses it), escaped for Make and Ninja; a\n"
+         "                 name they cannot read (a newline, * ? \" | ( = ; ...) is refused\n"
          "  --dump=KIND    print tokens | ast | values | snap (world frames after assembly) to stdout, or\n"
          "                 to OUT with -o\n"
          "  -h, --help     show this text\n"
@@ -532,6 +662,10 @@ std::optional<CliOptions> parse_options(const std::vector<std::string>& args, st
     }
     if (!take_value(args, i, "--prefix", "", value, error, matched)) return std::nullopt;
     if (matched) {
+      if (const std::string problem = prefix_problem(value); !problem.empty()) {
+        error = "--prefix " + problem;
+        return std::nullopt;
+      }
       options.prefix = value;
       continue;
     }
@@ -665,29 +799,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   const bool to_stdout = !options->output || *options->output == "-";
   if (to_stdout) {
     out << text.str() << converted.xml;  // a dump of a broken file still helps; its diagnostics are on stderr
-  } else if (!failed) {
-    const std::string dump = text.str();
-    std::string write_error;
-    // Meshes first, so that the MJCF never names a file not yet there; taken back if anything fails.
-    std::vector<std::filesystem::path> mesh_files_written;
-    if (!write_mesh_files(*options->output, converted.mesh_files, mesh_files_written, write_error) ||
-        !write_file_atomically(*options->output, converted.xml.empty() ? dump : converted.xml, write_error) ||
-        (converted.emitted && !write_manifest(converted, manifest_path(*options->output), write_error))) {
-      remove_written(mesh_files_written);
-      err << *options->output << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
-          << "]\n";
-      return kExitInputError;
-    }
-    if (options->depfile) {
-      std::vector<std::string> inputs = source_files(sources);
-      inputs.insert(inputs.end(), converted.asset_inputs.begin(), converted.asset_inputs.end());
-      if (!write_file_atomically(*options->depfile, depfile_text(*options->output, std::move(inputs)),
-                                 write_error)) {
-        err << *options->depfile << ": error: " << write_error << " [" << fe::code_name(fe::DiagCode::IoError)
-            << "]\n";
-        return kExitInputError;
-      }
-    }
+  } else if (!failed && !write_outputs(*options, sources, converted, text.str(), err)) {
+    return kExitInputError;
   }
   leave_to_exit(std::move(converted));
   return failed ? kExitInputError : kExitOk;

@@ -56,4 +56,8 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
 // For a process that exits right after run(): its model is left to the exit rather than freed.
 void end_process_after_run();
 
+// For the executable: when stderr is a terminal, --check shows how far its simulation is (a line rewritten
+// in place); in a pipe or a file, and for in-process callers that do not call this, it stays quiet.
+void show_progress_on_terminal();
+
 }  // namespace openplx::cli

@@ -18,7 +18,14 @@ std::vector<std::string> files_the_mjcf_reads(const mjcf::Element& document, con
 // absolute; texts that are no file (the embedded bundles, generated imports) are left out.
 std::vector<std::string> source_files(const frontend::SourceManager& sources);
 
-// "target: input input ...", one input a line, with spaces, '#' and '$' escaped; inputs sorted and unique.
-std::string depfile_text(const std::string& target, std::vector<std::string> inputs);
+// "target: input input ...", one input a line, inputs sorted and unique, escaped so that GNU Make (4.3) and
+// Ninja (1.11) both read every name back as it is: a space as "\ ", '#' as "\#", ':' as "\:", '$' as "$$".
+// A name one of them cannot express (measured with both, tests/tools/depfile_test.cpp) makes it return false
+// with `error` naming the file and the character: control characters (newline, tab), ( ) = ; (Make: archive
+// members, variable assignments, recipes), * ? " ' & | < > ` ^ (Ninja ends the name there), a backslash
+// before a character that is escaped or at the end, a leading '~' (Make: a home folder) and '%' in the target
+// (Make: a pattern rule).
+bool depfile_text(const std::string& target, std::vector<std::string> inputs, std::string& text,
+                  std::string& error);
 
 }  // namespace openplx::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   // Freeing a large model object by object costs as much as a pass; the exit frees it at once.
   openplx::cli::end_process_after_run();
+  openplx::cli::show_progress_on_terminal();
   const int status = openplx::cli::run(args, std::cout, std::cerr);
   std::cout.flush();
   std::cerr.flush();

@@ -8,6 +8,7 @@
 
 #include "contract/numbers.h"
 #include "openplx/runtime/simulation.h"
+#include "tools/cli/output_set.h"
 #include "tools/sim/sim_options.h"
 
 namespace openplx::sim {
@@ -117,11 +118,20 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
   }
   std::vector<rt::Output> printed;
   for (const std::string& name : options.prints) printed.push_back(sim.output(name));
+  // The CSV goes to a temporary file, renamed over --csv's only when the run succeeded (never a partial
+  // file), and never over a file the model was read from (an imported .openplx, a mesh).
+  cli::OutputSet written;
   std::ofstream csv;
   if (!options.csv.empty()) {
-    csv.open(options.csv);
-    if (!csv) {
-      err << options.csv << ": error: cannot write the CSV file\n";
+    std::vector<std::string> read = sim.files_read();
+    read.push_back(options.input);
+    std::string bad, error;
+    if (const std::string clash = cli::outputs_clash({{options.csv, "--csv"}}, read, bad); !clash.empty()) {
+      err << bad << ": error: " << clash << '\n';
+      return 1;
+    }
+    if (!written.stage_stream(options.csv, csv, error)) {
+      err << options.csv << ": error: cannot write the CSV file: " << error << '\n';
       return 1;
     }
     csv << "time";
@@ -166,6 +176,15 @@ int simulate(const SimOptions& options, std::ostream& out, std::ostream& err) {
     if (now - last_report > std::chrono::seconds(2)) {  // long runs say how far they are
       err << "openplx-sim: t = " << sim.time() << " s of " << options.time << " s\n";
       last_report = now;
+    }
+  }
+  if (csv.is_open()) {
+    csv.close();
+    std::string error;
+    if (!csv || !written.commit(error)) {
+      err << options.csv << ": error: cannot write the CSV file" << (error.empty() ? "" : " (" + error + ")")
+          << '\n';
+      return 1;
     }
   }
   for (size_t k = 0; k < printed.size(); ++k) out << options.prints[k] << " = " << text(printed[k]) << '\n';

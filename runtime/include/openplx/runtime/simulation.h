@@ -72,6 +72,9 @@ class Simulation {
   // an input clamped to its range (once per input), MuJoCo's own warnings, and instabilities under
   // OnInstability::Continue.
   const std::vector<std::string>& warnings() const;
+  // Every file the load read from disk (the model, the OpenPLX files and bundles it reaches, URDFs, meshes):
+  // what a tool writing files next to the model must not overwrite (openplx-sim --csv).
+  const std::vector<std::string>& files_read() const;
 
  private:
   explicit Simulation(std::unique_ptr<SimulationState> state);
